@@ -1,0 +1,33 @@
+// Output writers. Every file is written atomically (temporary file in the
+// same folder, then rename), so a crash never leaves a truncated file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/particle_frame.hpp"
+
+namespace sablier {
+
+struct IoError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Writes `contents` to `path` atomically. Throws IoError.
+void write_file_atomic(const std::string& path, const std::string& contents);
+
+// VTK XML PolyData (.vtp), binary appended raw data, one vertex per particle,
+// point arrays: velocity, volume, pressure, phi, stress (symmetric tensor as 6
+// or 9 components as VTK expects), shear_rate, id.
+std::string format_vtp(const ParticleFrame& frame);
+// CSV with header x,y[,z],vx,vy[,vz],volume,pressure,phi,sxx,syy[,szz],sxy[,sxz,syz]
+std::string format_particle_csv(const ParticleFrame& frame);
+
+// ParaView collection of frames: entries (time, relative file name).
+struct SeriesEntry {
+  double time;
+  std::string file;
+};
+std::string format_pvd(const std::vector<SeriesEntry>& entries);
+
+}  // namespace sablier

@@ -1,0 +1,114 @@
+// The scene: everything a run needs, as read from a TOML scene file.
+// Dimension-agnostic: vectors are stored with 3 components; in 2D the third
+// is unused (and must be absent from the file). See docs/scenes.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sablier {
+
+using Vec3d = std::array<double, 3>;
+using Vec3i = std::array<int, 3>;
+
+// An invalid scene: the message names the file, the key and what is allowed.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+enum class BoundaryType { Stick, Slip, Free };
+
+// Faces in the order xmin, xmax, ymin, ymax, zmin, zmax (index 2*axis + side).
+enum Face { XMin = 0, XMax, YMin, YMax, ZMin, ZMax };
+
+// A stretch of a face that behaves as `free` (an orifice): the face's points
+// whose tangential coordinates lie in [min, max] (normal coordinate ignored).
+struct Opening {
+  int face = YMin;
+  Vec3d min{0, 0, 0};
+  Vec3d max{0, 0, 0};
+};
+
+struct BoundaryConfig {
+  std::array<BoundaryType, 6> faces{BoundaryType::Slip, BoundaryType::Slip, BoundaryType::Slip,
+                                    BoundaryType::Slip, BoundaryType::Slip, BoundaryType::Slip};
+  std::vector<Opening> openings;
+};
+
+// mu(I) rheology (METHOD.md section 1): mu = mu_s + delta_mu / (1 + I0 / I).
+struct MuIConfig {
+  double delta_mu = 0.26;       // dimensionless
+  double I0 = 0.279;            // dimensionless
+  double grain_diameter = 1e-3; // m
+};
+
+struct MaterialConfig {
+  double density = 2500.0;      // kg/m^3 of grains
+  double mu = 0.5;              // simple-shear friction coefficient (METHOD.md section 4)
+  double phi_max = 0.6;         // maximum volume fraction, (0, 1]
+  double viscosity = 0.0;       // Pa s
+  double cohesion = 0.0;        // Pa
+  double cohesion_decay = 0.0;  // per unit shear strain; 0 = cohesion never decays
+  std::optional<MuIConfig> mu_i;
+};
+
+struct SolverConfig {
+  double tolerance = 1e-4;  // relative stress change per sweep (docs/method.md)
+  int max_iterations = 500;
+};
+
+struct TimeConfig {
+  double fps = 30.0;
+  int frames = 30;
+  int substeps = 0;  // 0 = adaptive (CFL on advection)
+  double cfl = 1.0;  // adaptive: at most this many cells of travel per step
+};
+
+enum class SandShape { Box, Cylinder };  // "disk" in 2D is a Cylinder
+
+struct SandConfig {
+  SandShape shape = SandShape::Box;
+  Vec3d min{0, 0, 0};     // box
+  Vec3d max{0, 0, 0};     // box
+  Vec3d center{0, 0, 0};  // cylinder / disk: centre of the base (3D, axis along z) or of the disk (2D)
+  double radius = 0.0;    // cylinder / disk
+  double height = 0.0;    // cylinder (3D only)
+  int particles_per_cell = 2;  // per axis
+  double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
+  Vec3d velocity{0, 0, 0};     // initial velocity, m/s
+};
+
+struct SceneConfig {
+  std::string source;  // file name, for messages
+  int dimension = 2;
+  Vec3d size{1, 1, 1};     // m, box from the origin
+  Vec3i resolution{1, 1, 1};  // cells per axis
+  TimeConfig time;
+  Vec3d gravity{0, -9.81, 0};
+  MaterialConfig material;
+  SolverConfig solver;
+  BoundaryConfig boundary;
+  std::vector<SandConfig> sand;
+  std::uint64_t seed = 0;
+
+  double cell_size() const { return size[0] / resolution[0]; }
+};
+
+// Reads and validates a scene file. `overrides` are "dotted.key=value" strings
+// (from --set), applied to the TOML document before validation and checked as
+// strictly as the file. Throws SceneError.
+SceneConfig load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Same, from TOML text (`source` names it in messages).
+SceneConfig parse_scene(const std::string& toml_text, const std::string& source,
+                        const std::vector<std::string>& overrides = {});
+
+// The resolved scene (every key, defaults filled in) as TOML text; parsing it
+// back gives the same SceneConfig.
+std::string scene_to_toml(const SceneConfig& scene);
+
+}  // namespace sablier
