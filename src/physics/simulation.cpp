@@ -1,1 +1,263 @@
-// placeholder
+// The time step (METHOD.md section 2) and the simulation's diagnostics.
+#include "physics/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "physics/shape.hpp"
+#include "physics/viscosity.hpp"
+
+namespace sablier {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+template <int D>
+typename DenseGrid<D>::IVec grid_cells(const SceneConfig& scene) {
+  typename DenseGrid<D>::IVec c;
+  for (int a = 0; a < D; ++a) c[a] = scene.resolution[a];
+  return c;
+}
+
+}  // namespace
+
+template <int D>
+Simulation<D>::Simulation(const SceneConfig& scene) : Simulation(scene, seed_particles<D>(scene)) {}
+
+template <int D>
+Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
+    : scene_(scene),
+      grid_(grid_cells<D>(scene), scene.cell_size()),
+      particles_(std::move(particles)),
+      rho_(scene.material.density),
+      phi_max_(scene.material.phi_max) {
+  for (int a = 0; a < D; ++a) gravity_[a] = scene.gravity[a];
+  const std::int64_t nodes = grid_.node_count();
+  node_mass_.assign(nodes, 0.0);
+  node_momentum_.assign(nodes, Vec<D>::Zero());
+  row_of_node_.assign(nodes, -1);
+  warm_lambda_.assign(nodes, SymVec<D>::Zero());
+  problem_.velocity.assign(nodes, Vec<D>::Zero());
+  problem_.inv_mass.assign(nodes, Vec<D>::Zero());
+  problem_.stencil = grid_.stencil_offsets();
+  init_boundaries();
+  sort_particles();
+}
+
+// Velocity boundary conditions as projections inside M^{-1} (METHOD.md
+// step 6): stick zeroes every component on a face's nodes, slip the normal
+// one, free (and nodes inside an opening) nothing. Ghost nodes are fixed.
+template <int D>
+void Simulation<D>::init_boundaries() {
+  free_mask_.assign(grid_.node_count(), Vec<D>::Zero());
+  const double h = grid_.h();
+  for (std::int64_t idx = 0; idx < grid_.node_count(); ++idx) {
+    const auto n = grid_.node_coords(idx);
+    if (!grid_.is_real_node(n)) continue;
+    Vec<D> mask = Vec<D>::Ones();
+    Vec<D> x;
+    for (int a = 0; a < D; ++a) x[a] = n[a] * h;
+    for (int a = 0; a < D; ++a) {
+      for (int side = 0; side < 2; ++side) {
+        if (n[a] != (side == 0 ? 0 : grid_.cells()[a])) continue;
+        if (leaves_through_free_face(a, side, x)) continue;
+        if (scene_.boundary.faces[2 * a + side] == BoundaryType::Stick) mask.setZero();
+        if (scene_.boundary.faces[2 * a + side] == BoundaryType::Slip) mask[a] = 0.0;
+      }
+    }
+    free_mask_[idx] = mask;
+  }
+}
+
+// Per-row quantities of the forms (METHOD.md step 2): V_j, the phi_max term
+// k_j (clamped at zero where the fraction already exceeds phi_max, METHOD.md
+// step 5), the friction and cohesion averaged over the row's particles, and
+// the warm start.
+template <int D>
+void Simulation<D>::build_rows(double dt) {
+  ConeProblem<D>& P = problem_;
+  const int rows = P.rows();
+  const double inv_trace_dt = 1.0 / (trace_scale<D>() * dt);
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j < rows; ++j) {
+    const std::int64_t node = P.node[j];
+    const double vj = grid_.node_volume(grid_.node_coords(node));
+    const double phi_j = node_mass_[node];
+    P.volume[j] = vj;
+    P.k[j] = std::max(0.0, phi_max_ * vj - phi_j) * inv_trace_dt;
+    const double a = cone_aperture<D>(row_mu_sum_[j] / phi_j);
+    P.aperture[j] = a;
+    // Cohesion weighted by how full the node is: isolated grains hold none.
+    const double c = row_cohesion_sum_[j] / std::max(phi_j, phi_max_ * vj);
+    P.cohesion[j] = (c > 0.0 && a > 0.0) ? c / a : 0.0;
+    P.lambda[j] = warm_lambda_[node];
+  }
+}
+
+// u_f = (M + A)^{-1} l (METHOD.md step 3) and the inverse masses; a
+// division per node without viscosity, conjugate gradients with it.
+template <int D>
+int Simulation<D>::unconstrained_velocity(double dt) {
+  ConeProblem<D>& P = problem_;
+  const std::int64_t nodes = grid_.node_count();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    const double m = node_mass_[i];
+    if (m > 0.0) {
+      P.velocity[i] = (node_momentum_[i] / m + dt * gravity_).cwiseProduct(free_mask_[i]);
+      P.inv_mass[i] = free_mask_[i] * (dt / (rho_ * m));
+    } else {
+      P.velocity[i].setZero();
+      P.inv_mass[i].setZero();
+    }
+  }
+  if (scene_.material.viscosity <= 0.0) return 0;
+  ViscousSystem<D> sys{grid_,          particles_,        cell_start_, cells_by_parity_,
+                       node_mass_,     free_mask_,        rho_ / dt,   scene_.material.viscosity};
+  return solve_viscous(sys, P.velocity);
+}
+
+template <int D>
+StepInfo Simulation<D>::step(double dt) {
+  StepInfo info;
+  info.dt = dt;
+  auto t0 = Clock::now();
+  sort_particles();
+  transfer_to_grid(dt);
+  build_rows(dt);
+  info.timings.transfer = seconds_since(t0);
+
+  t0 = Clock::now();
+  info.viscous_iterations = unconstrained_velocity(dt);
+  assemble_delassus(problem_);
+  apply_stress_to_velocity(problem_);
+  info.timings.assembly = seconds_since(t0);
+
+  t0 = Clock::now();
+  info.solve = solve_gauss_seidel(problem_, scene_.solver.tolerance, scene_.solver.max_iterations);
+  info.timings.solve = seconds_since(t0);
+
+  t0 = Clock::now();
+  std::fill(warm_lambda_.begin(), warm_lambda_.end(), SymVec<D>::Zero());
+  for (int j = 0; j < problem_.rows(); ++j) warm_lambda_[problem_.node[j]] = problem_.lambda[j];
+  transfer_to_particles(dt);
+  info.timings.advection = seconds_since(t0);
+
+  info.active_nodes = problem_.rows();
+  time_ += dt;
+  ++steps_;
+  return info;
+}
+
+template <int D>
+double Simulation<D>::adaptive_dt(double remaining) const {
+  // Travel (v + g dt) dt <= cfl h, solved for dt.
+  const double reach = scene_.time.cfl * grid_.h();
+  const double v = max_speed();
+  const double g = gravity_.norm();
+  double dt = remaining;
+  if (g > 0.0) {
+    dt = std::min(dt, (-v + std::sqrt(v * v + 4.0 * g * reach)) / (2.0 * g));
+  } else if (v > 0.0) {
+    dt = std::min(dt, reach / v);
+  }
+  // Equal sub-steps to the end of the frame.
+  const double n = std::ceil(remaining / dt * (1.0 - 1e-12));
+  return remaining / std::max(1.0, n);
+}
+
+template <int D>
+double Simulation<D>::kinetic_energy() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < particles_.size(); ++p)
+    e += particles_.volume[p] * particles_.velocity[p].squaredNorm();
+  return 0.5 * rho_ * e;
+}
+
+template <int D>
+double Simulation<D>::potential_energy() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < particles_.size(); ++p)
+    e -= particles_.volume[p] * gravity_.dot(particles_.position[p]);
+  return rho_ * e;
+}
+
+template <int D>
+double Simulation<D>::affine_energy() const {
+  constexpr int NC = ipow(2, D);
+  const double h = grid_.h();
+  double e = 0.0;
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const Vec<D>& x = particles_.position[p];
+    const auto cc = grid_.cell_of(x);
+    Vec<D> local;
+    for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
+    const Q1Stencil<D> s = q1_stencil<D>(local, h);
+    for (int c = 0; c < NC; ++c) {
+      Vec<D> offset;
+      for (int a = 0; a < D; ++a) offset[a] = (((c >> a) & 1) - local[a]) * h;
+      e += particles_.volume[p] * s.w[c] * (particles_.affine[p] * offset).squaredNorm();
+    }
+  }
+  return 0.5 * rho_ * e;
+}
+
+template <int D>
+double Simulation<D>::max_speed() const {
+  double v2 = 0.0;
+  for (const Vec<D>& v : particles_.velocity) v2 = std::max(v2, v.squaredNorm());
+  return std::sqrt(v2);
+}
+
+template <int D>
+double Simulation<D>::grain_mass() const {
+  double m = 0.0;
+  for (double v : particles_.volume) m += v;
+  return rho_ * m;
+}
+
+template <int D>
+Mat<D> Simulation<D>::row_bulk_stress(int j) const {
+  const double phi = node_mass_[problem_.node[j]] / problem_.volume[j];
+  return phi * from_sym<D>(problem_.lambda[j]);
+}
+
+template <int D>
+ParticleFrame Simulation<D>::frame() const {
+  const std::size_t n = particles_.size();
+  constexpr int SD = sym_size(D);
+  ParticleFrame f;
+  f.dimension = D;
+  f.time = time_;
+  f.count = n;
+  f.position.resize(n * D);
+  f.velocity.resize(n * D);
+  f.volume = particles_.volume;
+  f.pressure.resize(n);
+  f.phi = particles_.phi;
+  f.stress.resize(n * SD);
+  f.shear_rate = particles_.shear_rate;
+  f.id.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    for (int a = 0; a < D; ++a) {
+      f.position[p * D + a] = particles_.position[p][a];
+      f.velocity[p * D + a] = particles_.velocity[p][a];
+    }
+    // Outputs are bulk values phi lambda (METHOD.md section 4).
+    const double phi = particles_.phi[p];
+    f.pressure[p] = phi * trace_of<D>(particles_.stress[p]) / D;
+    const SymVec<D> s = phi * cartesian_components<D>(particles_.stress[p]);
+    for (int k = 0; k < SD; ++k) f.stress[p * SD + k] = s[k];
+    f.id[p] = static_cast<double>(particles_.id[p]);
+  }
+  return f;
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+}  // namespace sablier

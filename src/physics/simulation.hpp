@@ -1,0 +1,102 @@
+// One simulation: particles, grid, and the time step of METHOD.md section 2.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "core/particles.hpp"
+#include "io/particle_frame.hpp"
+#include "scene/scene.hpp"
+#include "solver/cone_problem.hpp"
+
+namespace sablier {
+
+// Wall-clock seconds spent in each stage of a step.
+struct StepTimings {
+  double transfer = 0.0;   // sort, P2G, node quantities
+  double assembly = 0.0;   // unconstrained velocity, viscosity, Delassus blocks, warm start
+  double solve = 0.0;      // Gauss-Seidel
+  double advection = 0.0;  // G2P, rheology state, advection, boundaries
+  double total() const { return transfer + assembly + solve + advection; }
+};
+
+struct StepInfo {
+  double dt = 0.0;
+  SolveReport solve;
+  StepTimings timings;
+  int active_nodes = 0;  // stress rows (= velocity nodes of cells holding particles)
+  int viscous_iterations = 0;
+};
+
+// Particles created from the scene's [[sand]] regions (METHOD.md step 1:
+// n particles per cell and per axis, V_p = phi_max h^d / n^d).
+template <int D>
+Particles<D> seed_particles(const SceneConfig& scene);
+
+template <int D>
+class Simulation {
+ public:
+  explicit Simulation(const SceneConfig& scene);
+  Simulation(const SceneConfig& scene, Particles<D> particles);
+
+  // Advances by dt (s).
+  StepInfo step(double dt);
+  // The adaptive step for at most `remaining` seconds: a particle travels at
+  // most time.cfl cells, accounting for one step of gravity.
+  double adaptive_dt(double remaining) const;
+
+  double time() const { return time_; }
+  std::int64_t steps() const { return steps_; }
+  const SceneConfig& scene() const { return scene_; }
+  const DenseGrid<D>& grid() const { return grid_; }
+  const Particles<D>& particles() const { return particles_; }
+  Particles<D>& particles() { return particles_; }
+  const ConeProblem<D>& problem() const { return problem_; }
+
+  // Diagnostics (SI), from the particles.
+  double kinetic_energy() const;    // sum 1/2 rho V_p |u_p|^2
+  double potential_energy() const;  // -sum rho V_p g.x_p (zero at the origin)
+  double affine_energy() const;     // APIC: 1/2 rho sum_p V_p sum_i N_i |B_p (x_i - x_p)|^2
+  double max_speed() const;
+  double grain_mass() const;
+
+  // Bulk stress phi lambda of row j, Cartesian tensor (compression positive).
+  Mat<D> row_bulk_stress(int j) const;
+
+  ParticleFrame frame() const;
+
+ private:
+  void init_boundaries();
+  void sort_particles();
+  void transfer_to_grid(double dt);
+  void build_rows(double dt);
+  int unconstrained_velocity(double dt);
+  void transfer_to_particles(double dt);
+  bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;
+
+  SceneConfig scene_;
+  DenseGrid<D> grid_;
+  Particles<D> particles_;
+  double time_ = 0.0;
+  std::int64_t steps_ = 0;
+  double rho_, phi_max_;
+  Vec<D> gravity_;
+
+  // Particles sorted by cell: particles of cell c are [cell_start_[c], cell_start_[c+1]).
+  std::vector<std::int64_t> cell_start_;
+  std::vector<std::int64_t> active_cells_;               // sorted
+  std::array<std::vector<std::int64_t>, ipow(2, D)> cells_by_parity_;
+
+  // Dense node fields (ghost-padded).
+  std::vector<double> node_mass_;     // m_i = Phi_i = sum_p V_p N_i, m^3
+  std::vector<Vec<D>> node_momentum_; // q_i, m^4/s
+  std::vector<Vec<D>> free_mask_;     // 1 on free velocity components, 0 on constrained
+  std::vector<int> row_of_node_;      // stress row index or -1
+  std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start
+  std::vector<double> row_mu_sum_, row_cohesion_sum_;  // sum_p V_p N_j (mu_p, c_p)
+
+  ConeProblem<D> problem_;
+};
+
+}  // namespace sablier

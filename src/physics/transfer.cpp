@@ -1,0 +1,218 @@
+// Particle <-> grid transfers (METHOD.md section 2, steps 1, 2 and 7): sorting
+// by cell, P2G with APIC and the coupling vectors g_ji of the forms, G2P with
+// the lagged rheology state, advection and the domain's faces.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "physics/shape.hpp"
+#include "physics/simulation.hpp"
+
+namespace sablier {
+
+template <int D>
+void Simulation<D>::sort_particles() {
+  const std::size_t n = particles_.size();
+  const auto& cells = grid_.cells();
+  const double h = grid_.h();
+  std::vector<std::int64_t> cell(n);
+  std::vector<std::int64_t> count(grid_.cell_count() + 1, 0);
+  for (std::size_t p = 0; p < n; ++p) {
+    const Vec<D>& x = particles_.position[p];
+    bool outside = false;  // left through a free face or an opening
+    for (int a = 0; a < D; ++a) outside |= !(x[a] >= 0.0 && x[a] <= cells[a] * h);
+    cell[p] = outside ? -1 : grid_.cell_index(grid_.cell_of(x));
+    if (!outside) ++count[cell[p] + 1];
+  }
+  for (std::int64_t c = 0; c < grid_.cell_count(); ++c) count[c + 1] += count[c];
+  cell_start_ = count;
+  std::vector<std::int64_t> order(cell_start_.back());
+  for (std::size_t p = 0; p < n; ++p)  // stable counting sort
+    if (cell[p] >= 0) order[count[cell[p]]++] = static_cast<std::int64_t>(p);
+  particles_.permute(order);
+
+  active_cells_.clear();
+  for (auto& list : cells_by_parity_) list.clear();
+  for (std::int64_t c = 0; c < grid_.cell_count(); ++c) {
+    if (cell_start_[c + 1] == cell_start_[c]) continue;
+    active_cells_.push_back(c);
+    const auto cc = grid_.cell_coords(c);
+    int parity = 0;
+    for (int a = 0; a < D; ++a) parity |= (cc[a] & 1) << a;
+    cells_by_parity_[parity].push_back(c);
+  }
+}
+
+template <int D>
+void Simulation<D>::transfer_to_grid(double /*dt*/) {
+  constexpr int NC = ipow(2, D);
+  std::fill(node_mass_.begin(), node_mass_.end(), 0.0);
+  std::fill(node_momentum_.begin(), node_momentum_.end(), Vec<D>::Zero());
+
+  // Stress rows: the nodes of cells holding particles, grouped by colour
+  // (node coordinates mod 3): rows of one colour have disjoint stencils.
+  const auto corner = grid_.corner_offsets();
+  std::fill(row_of_node_.begin(), row_of_node_.end(), -1);
+  std::vector<std::vector<std::int64_t>> by_colour(ipow(3, D));
+  for (std::int64_t c : active_cells_) {
+    const std::int64_t base = grid_.cell_base_node(grid_.cell_coords(c));
+    for (int k = 0; k < NC; ++k) {
+      const std::int64_t node = base + corner[k];
+      if (row_of_node_[node] != -1) continue;
+      row_of_node_[node] = -2;
+      const auto nc = grid_.node_coords(node);
+      int colour = 0;
+      for (int a = D - 1; a >= 0; --a) colour = colour * 3 + nc[a] % 3;
+      by_colour[colour].push_back(node);
+    }
+  }
+  ConeProblem<D>& P = problem_;
+  P.colour_start.assign(1, 0);
+  int rows = 0;
+  for (auto& list : by_colour) {
+    std::sort(list.begin(), list.end());
+    rows += static_cast<int>(list.size());
+    P.colour_start.push_back(rows);
+  }
+  P.resize_rows(rows);
+  int r = 0;
+  for (const auto& list : by_colour)
+    for (std::int64_t node : list) {
+      P.node[r] = node;
+      row_of_node_[node] = r;
+      P.coupling[r].setZero();
+      ++r;
+    }
+  row_mu_sum_.assign(rows, 0.0);
+  row_cohesion_sum_.assign(rows, 0.0);
+
+  // Scatter, one cell parity at a time: cells of equal parity share no node,
+  // so the sums are race-free and their order is fixed (bit-reproducible).
+  const double h = grid_.h();
+  const MaterialConfig& mat = scene_.material;
+  for (const auto& cells : cells_by_parity_) {
+    const std::int64_t ncells = static_cast<std::int64_t>(cells.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t ci = 0; ci < ncells; ++ci) {
+      const std::int64_t c = cells[ci];
+      const auto cc = grid_.cell_coords(c);
+      const std::int64_t base = grid_.cell_base_node(cc);
+      Vec<D> origin;
+      for (int a = 0; a < D; ++a) origin[a] = cc[a] * h;
+      for (std::int64_t p = cell_start_[c]; p < cell_start_[c + 1]; ++p) {
+        const Vec<D>& x = particles_.position[p];
+        const Vec<D> local = (x - origin) / h;
+        const Q1Stencil<D> s = q1_stencil<D>(local, h);
+        const double vp = particles_.volume[p];
+        double mu_p = mat.mu;
+        if (mat.mu_i) {
+          const double I = particles_.inertial[p];
+          mu_p += I > 0.0 ? mat.mu_i->delta_mu / (1.0 + mat.mu_i->I0 / I) : 0.0;
+        }
+        for (int a = 0; a < NC; ++a) {
+          const std::int64_t node = base + corner[a];
+          const double m = vp * s.w[a];
+          Vec<D> offset;  // x_i - x_p
+          for (int ax = 0; ax < D; ++ax) offset[ax] = (((a >> ax) & 1) - local[ax]) * h;
+          node_mass_[node] += m;
+          node_momentum_[node] += m * (particles_.velocity[p] + particles_.affine[p] * offset);
+          const int row = row_of_node_[node];
+          auto& g = P.coupling[row];
+          for (int b = 0; b < NC; ++b) g.col(corner_pair_slot<D>(a, b)) += m * s.grad[b];
+          row_mu_sum_[row] += m * mu_p;
+          row_cohesion_sum_[row] += m * particles_.cohesion[p];
+        }
+      }
+    }
+  }
+}
+
+template <int D>
+bool Simulation<D>::leaves_through_free_face(int axis, int side, const Vec<D>& x) const {
+  const int face = 2 * axis + side;
+  if (scene_.boundary.faces[face] == BoundaryType::Free) return true;
+  for (const Opening& o : scene_.boundary.openings) {
+    if (o.face != face) continue;
+    bool within = true;
+    for (int a = 0; a < D; ++a)
+      if (a != axis) within &= x[a] >= o.min[a] && x[a] <= o.max[a];
+    if (within) return true;
+  }
+  return false;
+}
+
+template <int D>
+void Simulation<D>::transfer_to_particles(double dt) {
+  constexpr int NC = ipow(2, D);
+  const auto corner = grid_.corner_offsets();
+  const double h = grid_.h();
+  const auto& cells = grid_.cells();
+  const MaterialConfig& mat = scene_.material;
+  const ConeProblem<D>& P = problem_;
+  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (std::int64_t p = 0; p < n; ++p) {
+    Vec<D>& x = particles_.position[p];
+    const auto cc = grid_.cell_of(x);
+    const std::int64_t base = grid_.cell_base_node(cc);
+    Vec<D> local;
+    for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
+    const Q1Stencil<D> s = q1_stencil<D>(local, h);
+    Vec<D> u = Vec<D>::Zero();
+    Mat<D> grad = Mat<D>::Zero();
+    SymVec<D> lambda = SymVec<D>::Zero();
+    double phi = 0.0;
+    for (int a = 0; a < NC; ++a) {
+      const std::int64_t node = base + corner[a];
+      const Vec<D>& ui = P.velocity[node];
+      u += s.w[a] * ui;
+      grad.noalias() += ui * s.grad[a].transpose();
+      const int row = row_of_node_[node];
+      lambda += s.w[a] * P.lambda[row];
+      phi += s.w[a] * node_mass_[node] / P.volume[row];
+    }
+    if (!u.allFinite()) bad = std::min(bad, p);
+    particles_.velocity[p] = u;
+    particles_.affine[p] = grad;
+    particles_.stress[p] = lambda;
+    particles_.phi[p] = phi;
+    // Equivalent shear rate: 2 |Dev D| in the paper's norm (the simple-shear
+    // rate for simple shear), used by mu(I) and by the cohesion decay.
+    const double shear = 2.0 * deviatoric_norm<D>(to_sym<D>(grad));
+    particles_.shear_rate[p] = shear;
+    if (mat.mu_i) {
+      // Lagged inertial number I = shear d / sqrt(P / rho), P the bulk pressure.
+      const double pressure = phi * trace_of<D>(lambda) / D;
+      particles_.inertial[p] = pressure > 0.0
+                                   ? shear * mat.mu_i->grain_diameter / std::sqrt(pressure / rho_)
+                                   : std::numeric_limits<double>::infinity();
+    }
+    if (mat.cohesion_decay > 0.0) particles_.cohesion[p] *= std::exp(-mat.cohesion_decay * shear * dt);
+    // Advection and the domain's faces: a particle crossing a free face (or
+    // an opening) is left outside and dropped at the next sort; on walls it
+    // is put back just inside (it can only overshoot when cfl > 1).
+    x += dt * u;
+    for (int a = 0; a < D; ++a) {
+      const double upper = cells[a] * h;
+      if (x[a] < 0.0 && !leaves_through_free_face(a, 0, x)) x[a] = 1e-6 * h;
+      if (x[a] > upper && !leaves_through_free_face(a, 1, x)) x[a] = upper - 1e-6 * h;
+    }
+  }
+  if (bad != std::numeric_limits<std::int64_t>::max())
+    throw std::runtime_error("non-finite velocity at step " + std::to_string(steps_) +
+                             ", particle id " + std::to_string(particles_.id[bad]) +
+                             ", stage G2P (grid to particles)");
+}
+
+#define SABLIER_INSTANTIATE(D)                                                     \
+  template void Simulation<D>::sort_particles();                                   \
+  template void Simulation<D>::transfer_to_grid(double);                           \
+  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const; \
+  template void Simulation<D>::transfer_to_particles(double);
+SABLIER_INSTANTIATE(2)
+SABLIER_INSTANTIATE(3)
+#undef SABLIER_INSTANTIATE
+
+}  // namespace sablier

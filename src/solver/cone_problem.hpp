@@ -1,0 +1,90 @@
+// The reduced cone complementarity problem of one time step (METHOD.md
+// section 2, steps 4-6) and its block Gauss-Seidel solver. The solver sees
+// velocity unknowns, inverse masses, stress rows and cones: no particles.
+//
+// Notation. Velocity unknowns u_i (dense, ghost-padded node space) with
+// inverse mass M_i^{-1} = dt / (rho m_i), per component, zero on constrained
+// components (METHOD.md step 6). Stress row j couples to the 3^d velocity
+// nodes of its stencil through vectors g_ji = sum_p V_p N_j(x_p) grad N_i(x_p),
+// so that (B u)_j = sym(sum_i u_i g_ji^T) and the stress force on node i is
+// f_i = sum_j Lambda_j g_ji (Lambda_j the tensor of lambda_j). Then
+//   u      = u_f + M^{-1} f(lambda),
+//   gamma_j = ((B u)_j + k_j e_0) / V_j,   (S gamma = B u + k, S_j = V_j)
+// and gamma_j = W_jj lambda_j + b_j with the symmetric positive semi-definite
+// diagonal block W_jj = (1/V_j) sum_i sym((M_i^{-1} Lambda g_ji) g_ji^T). The
+// node-wise scaling by S^{1/2} of METHOD.md leaves each local problem's
+// solution unchanged (cones are invariant under positive scaling), so rows are
+// solved in physical units: lambda in Pa (per unit grain volume), gamma in 1/s.
+// W = H H^T is never assembled: u is kept up to date and gamma_j read from it.
+//
+// Extra rows (frictional obstacles, METHOD.md section 3) have the same form
+// gamma_RB = sym(vbar n^T) = sym(sum_i u_i (w_ji n)^T): a row with its own
+// coupling vectors and aperture. Rigid bodies add velocity unknowns with their
+// own inverse inertia; both slot into this layout as further rows/unknowns.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/tensor.hpp"
+#include "solver/drucker_prager.hpp"
+
+namespace sablier {
+
+struct SolveReport {
+  int iterations = 0;     // Gauss-Seidel sweeps
+  double residual = 0.0;  // relative stress change of the last sweep (see below)
+  bool hit_cap = false;   // stopped at max_iterations above tolerance
+  int sliding = 0, sticking = 0, separated = 0;  // node cases after the solve
+};
+
+template <int D>
+struct ConeProblem {
+  static constexpr int SD = sym_size(D);
+  static constexpr int NS = ipow(3, D);  // stencil size
+  using Coupling = Eigen::Matrix<double, D, NS>;
+
+  // Velocity unknowns.
+  std::vector<Vec<D>> velocity;  // in: unconstrained velocity u_f; out: u
+  std::vector<Vec<D>> inv_mass;  // dt / (rho m_i) on free components, else 0
+  std::array<std::int64_t, NS> stencil{};  // velocity index offsets of a row's stencil
+
+  // Stress rows, grouped by colour: rows [colour_start[c], colour_start[c+1])
+  // have pairwise disjoint stencils and are updated in parallel.
+  std::vector<int> colour_start;
+  std::vector<std::int64_t> node;     // velocity index of the row's centre node
+  std::vector<Coupling> coupling;     // g_ji, columns in stencil order
+  std::vector<double> volume;         // V_j, m^3
+  std::vector<double> k;              // (phi_max V_j - Phi_j)^+ / (sqrt(2d) dt), m^3/s
+  std::vector<double> aperture;       // cone aperture (METHOD.md section 4)
+  std::vector<double> cohesion;       // apex shift along e_0, Pa (cone on lambda + shift e_0)
+  std::vector<SymVec<D>> lambda;      // in: warm start; out: the solution, Pa
+  std::vector<LocalDelassus<SD>> delassus;
+  std::vector<DPCase> state;
+
+  int rows() const { return static_cast<int>(node.size()); }
+  void resize_rows(int n);
+};
+
+// Builds each row's diagonal block W_jj (METHOD.md step 5).
+template <int D>
+void assemble_delassus(ConeProblem<D>& p);
+
+// Adds M^{-1} f(lambda) to the velocities (the warm start's contribution).
+template <int D>
+void apply_stress_to_velocity(ConeProblem<D>& p);
+
+// Block Gauss-Seidel with coloured parallel sweeps. Residual after each sweep:
+//   r = sqrt(sum_j V_j |lambda_j^k - lambda_j^{k-1}|^2 / sum_j V_j |lambda_j^k|^2),
+// the relative change of the stress field over the sweep, which is zero
+// exactly at a solution and independent of the scene's size, density and
+// gravity. Stops when r <= tolerance or after max_iterations sweeps. The result
+// is bit-identical whatever the thread count.
+template <int D>
+SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations);
+
+// gamma_j (1/s) from the current velocities, for diagnostics and tests.
+template <int D>
+SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j);
+
+}  // namespace sablier

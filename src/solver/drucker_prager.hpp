@@ -1,0 +1,189 @@
+// The exact local Drucker-Prager solve on one stress node (METHOD.md section 2,
+// step 5): find x with y = W x + b and (x ; y) in DP(aperture), where, in the
+// coordinates of core/tensor.hpp (N = trace coordinate 0, T = the others):
+//   separation: x = 0 and y_N >= 0;
+//   stick:      y = 0 and |x_T| <= aperture x_N;
+//   slide:      |x_T| = aperture x_N > 0, y_N = 0, y_T = -beta x_T with beta > 0.
+//
+// W is stored as `LocalDelassus`: its tangential block is diagonalised once per
+// time step, W_TT = Q diag(ev) Q^T, so that every candidate solution costs
+// O(SD) in the rotated coordinates r = (x_N, Q^T x_T). The cone, separation and
+// flow rule are invariant under that rotation, so the solve runs entirely in
+// rotated coordinates. For a plastic multiplier beta, (W + beta P_T) x = -b has
+// the closed-form solution
+//   x_N(beta) = (-b_N + sum_k c_k d_k / (ev_k + beta)) / (w_NN - sum_k c_k^2 / (ev_k + beta)),
+//   z_k(beta) = -(d_k + c_k x_N) / (ev_k + beta),
+// with c = Q^T w_TN, d = Q^T b_T, z = Q^T x_T; beta = 0 is the stick candidate.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace sablier {
+
+enum class DPCase : unsigned char { Separation = 0, Stick = 1, Slide = 2, Inactive = 3 };
+
+template <int S>
+struct LocalDelassus {
+  static constexpr int T = S - 1;
+  using VecS = Eigen::Matrix<double, S, 1>;
+  using VecT = Eigen::Matrix<double, T, 1>;
+  using MatS = Eigen::Matrix<double, S, S>;
+  using MatT = Eigen::Matrix<double, T, T>;
+
+  double w_nn = 0.0;
+  VecT c = VecT::Zero();   // Q^T w_TN
+  VecT ev = VecT::Zero();  // eigenvalues of W_TT (+ regularisation)
+  MatT Q = MatT::Identity();
+  bool degenerate = true;  // W == 0: the node cannot act on any free velocity
+
+  // Relative Tikhonov shift added to W (a compliance of 1e-13 of W's scale):
+  // keeps W_jj invertible on nodes whose particles span too few directions.
+  static constexpr double kRegularisation = 1e-13;
+
+  void set(const MatS& W) {
+    const double scale = W.trace() / S;
+    degenerate = !(scale > 0.0);
+    if (degenerate) return;
+    const double eps = kRegularisation * scale;
+    w_nn = W(0, 0) + eps;
+    const MatT wtt = W.template bottomRightCorner<T, T>();
+    Eigen::SelfAdjointEigenSolver<MatT> eig;
+    if constexpr (T <= 3) {
+      eig.computeDirect(wtt);
+    } else {
+      eig.compute(wtt);
+    }
+    Q = eig.eigenvectors();
+    ev = eig.eigenvalues().array().max(0.0) + eps;
+    c = Q.transpose() * W.template bottomLeftCorner<T, 1>();
+  }
+
+  VecS rotate(const VecS& x) const {
+    VecS r;
+    r[0] = x[0];
+    r.template tail<T>() = Q.transpose() * x.template tail<T>();
+    return r;
+  }
+  VecS unrotate(const VecS& r) const {
+    VecS x;
+    x[0] = r[0];
+    x.template tail<T>() = Q * r.template tail<T>();
+    return x;
+  }
+  // W r in rotated coordinates.
+  VecS apply_rotated(const VecS& r) const {
+    VecS out;
+    const VecT z = r.template tail<T>();
+    out[0] = w_nn * r[0] + c.dot(z);
+    out.template tail<T>() = c * r[0] + ev.cwiseProduct(z);
+    return out;
+  }
+};
+
+namespace detail {
+
+// x(beta) of (W + beta P_T) x = -b in rotated coordinates, and the slide
+// function f(beta) = |z| - aperture x_N with its derivative.
+template <int S>
+struct SlideEval {
+  double xn, f, df;
+  Eigen::Matrix<double, S - 1, 1> z;
+};
+
+template <int S>
+inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
+                               const Eigen::Matrix<double, S - 1, 1>& d, double aperture,
+                               double beta) {
+  using VecT = Eigen::Matrix<double, S - 1, 1>;
+  const VecT r = (W.ev.array() + beta).inverse();
+  const VecT cr = W.c.cwiseProduct(r);
+  const double num = -bn + cr.dot(d);
+  const double den = W.w_nn - cr.dot(W.c);
+  SlideEval<S> e;
+  e.xn = num / den;
+  const VecT dc = d + W.c * e.xn;
+  e.z = -dc.cwiseProduct(r);
+  const double dnum = -cr.cwiseProduct(r).dot(d);
+  const double dden = cr.cwiseProduct(r).dot(W.c);
+  const double dxn = (dnum - e.xn * dden) / den;
+  const VecT dz = -W.c.cwiseProduct(r) * dxn + dc.cwiseProduct(r.cwiseProduct(r));
+  const double zn = e.z.norm();
+  e.f = zn - aperture * e.xn;
+  e.df = (zn > 0.0 ? e.z.dot(dz) / zn : 0.0) - aperture * dxn;
+  return e;
+}
+
+}  // namespace detail
+
+// Solves the local problem in rotated coordinates; b and x are rotated
+// (r = (x_N, Q^T x_T)). Returns the case that holds.
+template <int S>
+inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
+                                           const Eigen::Matrix<double, S, 1>& b, double aperture,
+                                           Eigen::Matrix<double, S, 1>& x) {
+  using VecT = Eigen::Matrix<double, S - 1, 1>;
+  constexpr int T = S - 1;
+  x.setZero();
+  // 1. Separation: the material is not compressed at this node.
+  if (W.degenerate || b[0] >= 0.0) return DPCase::Separation;
+  const VecT d = b.template tail<T>();
+  // Frictionless: x_T = 0 exactly, y_N = 0.
+  if (aperture <= 0.0) {
+    x[0] = -b[0] / W.w_nn;
+    return DPCase::Slide;
+  }
+  // 2. Stick: beta = 0.
+  detail::SlideEval<S> e = detail::eval_slide<S>(W, b[0], d, aperture, 0.0);
+  if (e.xn > 0.0 && e.f <= 0.0) {
+    x[0] = e.xn;
+    x.template tail<T>() = e.z;
+    return DPCase::Stick;
+  }
+  // 3. Slide: bracket the root of f on [0, hi], then safeguarded Newton.
+  double lo = 0.0;
+  double hi = std::max(W.ev.maxCoeff(), W.w_nn);
+  detail::SlideEval<S> eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
+  for (int k = 0; k < 200 && eh.f >= 0.0; ++k) {
+    lo = hi;
+    e = eh;
+    hi *= 4.0;
+    eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
+  }
+  double beta = (e.df < 0.0) ? lo - e.f / e.df : 0.5 * (lo + hi);
+  for (int it = 0; it < 100; ++it) {
+    if (!(beta > lo && beta < hi)) beta = 0.5 * (lo + hi);
+    e = detail::eval_slide<S>(W, b[0], d, aperture, beta);
+    const double scale = e.z.norm() + aperture * std::abs(e.xn);
+    if (std::abs(e.f) <= 1e-15 * scale) break;
+    if (e.f > 0.0) {
+      lo = beta;
+    } else {
+      hi = beta;
+    }
+    if (hi - lo <= 1e-15 * hi) break;
+    beta = (e.df != 0.0) ? beta - e.f / e.df : 0.5 * (lo + hi);
+  }
+  // Put x exactly on the cone (the correction is at round-off level).
+  const double zn = e.z.norm();
+  x[0] = e.xn;
+  x.template tail<T>() = zn > 0.0 ? VecT(e.z * (aperture * e.xn / zn)) : e.z;
+  return DPCase::Slide;
+}
+
+// Convenience form in unrotated coordinates (tests, tools).
+template <int S>
+inline DPCase solve_drucker_prager(const Eigen::Matrix<double, S, S>& Wmat,
+                                   const Eigen::Matrix<double, S, 1>& b, double aperture,
+                                   Eigen::Matrix<double, S, 1>& x) {
+  LocalDelassus<S> W;
+  W.set(Wmat);
+  Eigen::Matrix<double, S, 1> xr;
+  const DPCase c = solve_drucker_prager_rotated<S>(W, W.rotate(b), aperture, xr);
+  x = W.unrotate(xr);
+  return c;
+}
+
+}  // namespace sablier

@@ -1,0 +1,122 @@
+// The exact local Drucker-Prager solve (METHOD.md section 2, step 5): each of
+// the three cases on a constructed problem, and 10,000 random well-posed
+// problems per dimension whose solutions must satisfy the cone, the
+// complementarity and the flow rule to 1e-10 relative.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/tensor.hpp"
+#include "solver/drucker_prager.hpp"
+
+namespace sablier {
+namespace {
+
+constexpr double kTol = 1e-10;
+
+template <int S>
+using VecS = Eigen::Matrix<double, S, 1>;
+template <int S>
+using MatS = Eigen::Matrix<double, S, S>;
+
+// Checks (x ; y = W x + b) in DP(a); returns a description of the failure.
+template <int S>
+::testing::AssertionResult in_drucker_prager(const MatS<S>& W, const VecS<S>& b, double a,
+                                             const VecS<S>& x) {
+  const VecS<S> y = W * x + b;
+  const double xs = std::max(x.norm(), 1e-300);
+  const double ys = std::max(b.norm(), W.norm() * x.norm());
+  const double xn = x[0], yn = y[0];
+  const double xt = x.template tail<S - 1>().norm();
+  const auto yt = y.template tail<S - 1>();
+  if (xn < -kTol * xs) return ::testing::AssertionFailure() << "x_N < 0: " << xn;
+  if (yn < -kTol * ys) return ::testing::AssertionFailure() << "y_N < 0: " << yn;
+  if (xt > a * xn + kTol * xs)
+    return ::testing::AssertionFailure() << "outside cone: |x_T| " << xt << " > " << a * xn;
+  if (std::abs(xn * yn) > kTol * xs * ys)
+    return ::testing::AssertionFailure() << "complementarity x_N y_N = " << xn * yn;
+  if (xn > kTol * xs) {
+    // Compressed: either sticking (y = 0) or sliding on the cone with
+    // y_T = -beta x_T, beta >= 0 (the stress opposes the shearing).
+    if (xt < a * xn * (1.0 - 1e-8)) {
+      if (y.norm() > kTol * ys) return ::testing::AssertionFailure() << "inside cone but y != 0";
+    } else if (xt > 0.0) {
+      const VecS<S - 1> xhat = x.template tail<S - 1>() / xt;
+      const double along = yt.dot(xhat);
+      if (along > kTol * ys) return ::testing::AssertionFailure() << "y_T along +x_T: " << along;
+      if ((yt - along * xhat).norm() > kTol * ys)
+        return ::testing::AssertionFailure() << "y_T not parallel to x_T";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+template <int S>
+MatS<S> random_spd(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_real_distribution<double> e(-3.0, 3.0);
+  MatS<S> A;
+  for (int i = 0; i < S; ++i)
+    for (int j = 0; j < S; ++j) A(i, j) = u(rng);
+  // Condition numbers up to about 1e4, scales from 1e-3 to 1e3.
+  return std::pow(10.0, e(rng)) * (A * A.transpose() + 1e-4 * MatS<S>::Identity());
+}
+
+template <int S>
+void random_problems(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_real_distribution<double> mu(0.0, 1.5);
+  int counts[3] = {0, 0, 0};
+  for (int trial = 0; trial < 10000; ++trial) {
+    const MatS<S> W = random_spd<S>(rng);
+    VecS<S> b;
+    for (int k = 0; k < S; ++k) b[k] = u(rng);
+    if (trial % 3 == 0) b[0] = -std::abs(b[0]);  // favour compressed problems
+    const double a = trial % 50 == 0 ? 0.0 : mu(rng);
+    VecS<S> x;
+    const DPCase c = solve_drucker_prager<S>(W, b, a, x);
+    ++counts[static_cast<int>(c)];
+    ASSERT_TRUE(in_drucker_prager<S>(W, b, a, x)) << "trial " << trial << " case " << int(c);
+  }
+  for (int c = 0; c < 3; ++c) EXPECT_GT(counts[c], 100) << "case " << c << " rarely exercised";
+}
+
+TEST(DruckerPrager, RandomProblems2D) { random_problems<3>(1); }
+TEST(DruckerPrager, RandomProblems3D) { random_problems<6>(2); }
+
+template <int S>
+void three_cases() {
+  std::mt19937_64 rng(7);
+  const MatS<S> W = random_spd<S>(rng);
+  const double a = 0.5;
+  VecS<S> x;
+  // Separation: the unconstrained strain rate expands (b_N > 0).
+  VecS<S> b = VecS<S>::Zero();
+  b[0] = 1.0;
+  b[1] = -3.0;
+  EXPECT_EQ(solve_drucker_prager<S>(W, b, a, x), DPCase::Separation);
+  EXPECT_EQ(x.norm(), 0.0);
+  // Stick: b = -W x* with x* strictly inside the cone gives back x*.
+  VecS<S> xs = VecS<S>::Zero();
+  xs[0] = 2.0;
+  xs[1] = 0.3;
+  b = -W * xs;
+  if (b[0] < 0.0) {
+    EXPECT_EQ(solve_drucker_prager<S>(W, b, a, x), DPCase::Stick);
+    EXPECT_LT((x - xs).norm(), 1e-10 * xs.norm());
+  }
+  // Slide: a compressive b with a large shear gives a point on the cone.
+  b = VecS<S>::Zero();
+  b[0] = -1.0;
+  b[S - 1] = 50.0;
+  EXPECT_EQ(solve_drucker_prager<S>(W, b, a, x), DPCase::Slide);
+  EXPECT_NEAR(x.template tail<S - 1>().norm(), a * x[0], 1e-12 * x.norm());
+  EXPECT_TRUE(in_drucker_prager<S>(W, b, a, x));
+}
+
+TEST(DruckerPrager, ThreeCases2D) { three_cases<3>(); }
+TEST(DruckerPrager, ThreeCases3D) { three_cases<6>(); }
+
+}  // namespace
+}  // namespace sablier
