@@ -1,1 +1,51 @@
-int main(){return 0;}
+// sablier: run, check and inspect granular-flow scenes. See README.md.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Sablier: semi-implicit MPM for dry granular materials"};
+  app.require_subcommand(1);
+
+  sablier::RunOptions run;
+  std::string formats = "vtp";
+  CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its outputs");
+  run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)")->required();
+  run_cmd->add_option("--out,-o", run.out_dir, "Output folder")->required();
+  run_cmd->add_option("--set", run.overrides, "Override a scene key: --set material.mu=0.3");
+  run_cmd->add_option("--format", formats, "Particle formats, comma-separated: vtp,csv");
+  run_cmd->add_option("--threads", run.threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  run_cmd->add_flag("--quiet,-q", run.quiet, "No progress output");
+  run_cmd->add_flag("--overwrite", run.overwrite, "Replace another run's outputs in the folder");
+
+  std::string check_path;
+  std::vector<std::string> check_overrides;
+  CLI::App* check_cmd = app.add_subcommand("check", "Validate a scene and print a summary");
+  check_cmd->add_option("scene", check_path, "Scene file (TOML)")->required();
+  check_cmd->add_option("--set", check_overrides, "Override a scene key");
+
+  CLI::App* info_cmd = app.add_subcommand("info", "Version, build and OpenMP information");
+
+  CLI11_PARSE(app, argc, argv);
+  if (*run_cmd) {
+    run.formats.clear();
+    std::size_t start = 0;
+    while (start <= formats.size()) {
+      const std::size_t comma = formats.find(',', start);
+      const std::string f = formats.substr(start, comma == std::string::npos ? comma : comma - start);
+      if (f != "vtp" && f != "csv") {
+        std::fprintf(stderr, "error: --format: unknown format \"%s\"; allowed: vtp, csv\n", f.c_str());
+        return 2;
+      }
+      run.formats.push_back(f);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    return sablier::run_command(run);
+  }
+  if (*check_cmd) return sablier::check_command(check_path, check_overrides);
+  if (*info_cmd) return sablier::info_command();
+  return 2;
+}

@@ -134,7 +134,6 @@ StepInfo Simulation<D>::step(double dt) {
   t0 = Clock::now();
   info.viscous_iterations = unconstrained_velocity(dt);
   assemble_delassus(problem_);
-  apply_stress_to_velocity(problem_);
   info.timings.assembly = seconds_since(t0);
 
   t0 = Clock::now();

@@ -15,8 +15,8 @@ namespace sablier {
 // Wall-clock seconds spent in each stage of a step.
 struct StepTimings {
   double transfer = 0.0;   // sort, P2G, node quantities
-  double assembly = 0.0;   // unconstrained velocity, viscosity, Delassus blocks, warm start
-  double solve = 0.0;      // Gauss-Seidel
+  double assembly = 0.0;   // unconstrained velocity, viscosity, Delassus blocks
+  double solve = 0.0;      // warm start and Gauss-Seidel sweeps
   double advection = 0.0;  // G2P, rheology state, advection, boundaries
   double total() const { return transfer + assembly + solve + advection; }
 };

@@ -57,7 +57,7 @@ struct MaterialConfig {
 };
 
 struct SolverConfig {
-  double tolerance = 1e-4;  // relative stress change per sweep (docs/method.md)
+  double tolerance = 1e-3;  // relative velocity change of the last sweep (docs/method.md)
   int max_iterations = 500;
 };
 

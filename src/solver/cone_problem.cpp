@@ -42,15 +42,15 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   }
 }
 
-// One exact local update of row j; returns V_j |dlambda|^2.
+// One exact local update of row j.
 template <int D>
-inline double update_row(ConeProblem<D>& p, int j) {
+inline void update_row(ConeProblem<D>& p, int j) {
   constexpr int SD = sym_size(D);
   using V = Eigen::Matrix<double, SD, 1>;
   const LocalDelassus<SD>& W = p.delassus[j];
   if (W.degenerate) {
     p.state[j] = DPCase::Inactive;
-    return 0.0;
+    return;
   }
   V y = apply_B<D>(p, j);
   y[0] += p.k[j];
@@ -67,24 +67,23 @@ inline double update_row(ConeProblem<D>& p, int j) {
   p.state[j] = solve_drucker_prager_rotated<SD>(W, b, p.aperture[j], x);
   x -= e0;
   const V dl = W.unrotate(x - x_old);
-  if (dl.squaredNorm() == 0.0) return 0.0;
+  if (dl.squaredNorm() == 0.0) return;
   scatter_stress<D>(p, j, dl);
   p.lambda[j] += dl;
-  return p.volume[j] * dl.squaredNorm();
 }
 
 // Sum of f(j) over rows in fixed blocks, then the block sums in order: the
 // same floating-point result for any thread count.
 template <class F>
-double deterministic_sum(int n, const F& f) {
-  constexpr int kBlock = 512;
-  const int nb = (n + kBlock - 1) / kBlock;
+double deterministic_sum(std::int64_t n, const F& f) {
+  constexpr std::int64_t kBlock = 1024;
+  const std::int64_t nb = (n + kBlock - 1) / kBlock;
   std::vector<double> partial(nb, 0.0);
 #pragma omp parallel for schedule(static)
-  for (int b = 0; b < nb; ++b) {
+  for (std::int64_t b = 0; b < nb; ++b) {
     double s = 0.0;
-    const int end = std::min(n, (b + 1) * kBlock);
-    for (int j = b * kBlock; j < end; ++j) s += f(j);
+    const std::int64_t end = std::min(n, (b + 1) * kBlock);
+    for (std::int64_t j = b * kBlock; j < end; ++j) s += f(j);
     partial[b] = s;
   }
   double total = 0.0;
@@ -136,17 +135,30 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   const int n = p.rows();
   if (n == 0) return report;
   const int ncol = static_cast<int>(p.colour_start.size()) - 1;
-  std::vector<double> change(n, 0.0);
+  const std::int64_t nv = static_cast<std::int64_t>(p.velocity.size());
+  // Velocities before any stress acts (u_f) and before the current sweep.
+  const std::vector<Vec<D>> u_free = p.velocity;
+  std::vector<Vec<D>> u_prev;
+  apply_stress_to_velocity(p);  // warm start
+  // |a|_M^2 = sum over free components of a^2 / inv_mass (kinetic-energy norm).
+  const auto mass_norm2 = [&](const Vec<D>& a, std::int64_t i) {
+    double s = 0.0;
+    for (int c = 0; c < D; ++c)
+      if (p.inv_mass[i][c] > 0.0) s += a[c] * a[c] / p.inv_mass[i][c];
+    return s;
+  };
   for (int it = 1; it <= max_iterations; ++it) {
+    u_prev = p.velocity;
     for (int c = 0; c < ncol; ++c) {
 #pragma omp parallel for schedule(static)
-      for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) change[j] = update_row<D>(p, j);
+      for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) update_row<D>(p, j);
     }
-    const double dnum = deterministic_sum(n, [&](int j) { return change[j]; });
-    const double dden =
-        deterministic_sum(n, [&](int j) { return p.volume[j] * p.lambda[j].squaredNorm(); });
+    const double change = deterministic_sum(
+        nv, [&](std::int64_t i) { return mass_norm2(p.velocity[i] - u_prev[i], i); });
+    const double correction = deterministic_sum(
+        nv, [&](std::int64_t i) { return mass_norm2(p.velocity[i] - u_free[i], i); });
     report.iterations = it;
-    report.residual = dden > 0.0 ? std::sqrt(dnum / dden) : (dnum > 0.0 ? 1.0 : 0.0);
+    report.residual = correction > 0.0 ? std::sqrt(change / correction) : 0.0;
     if (report.residual <= tolerance) break;
   }
   report.hit_cap = report.residual > tolerance;

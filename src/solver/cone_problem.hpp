@@ -33,7 +33,7 @@ namespace sablier {
 
 struct SolveReport {
   int iterations = 0;     // Gauss-Seidel sweeps
-  double residual = 0.0;  // relative stress change of the last sweep (see below)
+  double residual = 0.0;  // relative velocity change of the last sweep (see below)
   bool hit_cap = false;   // stopped at max_iterations above tolerance
   int sliding = 0, sticking = 0, separated = 0;  // node cases after the solve
 };
@@ -70,16 +70,22 @@ struct ConeProblem {
 template <int D>
 void assemble_delassus(ConeProblem<D>& p);
 
-// Adds M^{-1} f(lambda) to the velocities (the warm start's contribution).
+// Adds M^{-1} f(lambda) to the velocities.
 template <int D>
 void apply_stress_to_velocity(ConeProblem<D>& p);
 
-// Block Gauss-Seidel with coloured parallel sweeps. Residual after each sweep:
-//   r = sqrt(sum_j V_j |lambda_j^k - lambda_j^{k-1}|^2 / sum_j V_j |lambda_j^k|^2),
-// the relative change of the stress field over the sweep, which is zero
-// exactly at a solution and independent of the scene's size, density and
-// gravity. Stops when r <= tolerance or after max_iterations sweeps. The result
-// is bit-identical whatever the thread count.
+// Block Gauss-Seidel with coloured parallel sweeps, warm-started from the
+// rows' lambda (on entry `velocity` holds u_f; the warm start's M^{-1} f is
+// added here). Residual after sweep k, in the kinetic-energy norm
+// |a|_M^2 = sum_i a_i . M_i a_i:
+//   r_k = |u^k - u^{k-1}|_M / |u^k - u_f|_M,
+// the velocity change of the last sweep relative to the whole correction the
+// stresses make. It is dimensionless (independent of the scene's size,
+// density and gravity), zero exactly at a fixed point, and blind to the
+// stress components in the null space of W = H H^T (lambda has d(d+1)/2
+// components per node against d velocities, so the stress field is not
+// unique; those components never move a grain). Stops when r <= tolerance or
+// after max_iterations sweeps. Bit-identical whatever the thread count.
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations);
 
