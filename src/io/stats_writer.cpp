@@ -1,1 +1,68 @@
-// placeholder
+#include "io/stats_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <sstream>
+
+#include "io/writers.hpp"
+
+namespace sablier {
+
+const char* const kStatsHeader =
+    "step,time,dt,particles,active_nodes,iterations,residual,kinetic_energy,potential_energy,"
+    "max_speed,wall_seconds,hit_cap,transfer_seconds,assembly_seconds,solve_seconds,"
+    "advection_seconds";
+
+std::string StatsTable::csv() const {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "{}\n", kStatsHeader);
+  for (const StepStats& s : rows_) {
+    fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                   s.step, s.time, s.dt, s.particles, s.active_nodes, s.iterations, s.residual,
+                   s.kinetic_energy, s.potential_energy, s.max_speed, s.wall_seconds,
+                   s.hit_cap ? 1 : 0, s.transfer_seconds, s.assembly_seconds, s.solve_seconds,
+                   s.advection_seconds);
+  }
+  return fmt::to_string(out);
+}
+
+std::vector<StepStats> parse_stats_csv(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line) || line != kStatsHeader) throw IoError("stats.csv: bad header");
+  std::vector<StepStats> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::istringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ',')) {
+      try {
+        v.push_back(std::stod(cell));
+      } catch (const std::exception&) {
+        throw IoError("stats.csv: bad number \"" + cell + "\"");
+      }
+    }
+    if (v.size() != 16) throw IoError("stats.csv: expected 16 columns in \"" + line + "\"");
+    StepStats s;
+    s.step = static_cast<long>(v[0]);
+    s.time = v[1];
+    s.dt = v[2];
+    s.particles = static_cast<long>(v[3]);
+    s.active_nodes = static_cast<long>(v[4]);
+    s.iterations = static_cast<int>(v[5]);
+    s.residual = v[6];
+    s.kinetic_energy = v[7];
+    s.potential_energy = v[8];
+    s.max_speed = v[9];
+    s.wall_seconds = v[10];
+    s.hit_cap = v[11] != 0.0;
+    s.transfer_seconds = v[12];
+    s.assembly_seconds = v[13];
+    s.solve_seconds = v[14];
+    s.advection_seconds = v[15];
+    rows.push_back(s);
+  }
+  return rows;
+}
+
+}  // namespace sablier

@@ -2,6 +2,7 @@
 // same folder, then rename), so a crash never leaves a truncated file.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,10 @@ struct IoError : std::runtime_error {
 
 // Writes `contents` to `path` atomically. Throws IoError.
 void write_file_atomic(const std::string& path, const std::string& contents);
+// Creates a folder and its parents. Throws IoError.
+void ensure_directory(const std::string& path);
+// The whole contents of a file. Throws IoError.
+std::string read_file(const std::string& path);
 
 // VTK XML PolyData (.vtp), binary appended raw data, one vertex per particle,
 // point arrays: velocity, volume, pressure, phi, stress (symmetric tensor as 6
@@ -29,5 +34,8 @@ struct SeriesEntry {
   std::string file;
 };
 std::string format_pvd(const std::vector<SeriesEntry>& entries);
+
+// Reads back a .vtp written by format_vtp (tests and tools). Throws IoError.
+ParticleFrame parse_vtp(const std::string& contents, const std::string& source);
 
 }  // namespace sablier

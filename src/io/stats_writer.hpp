@@ -1,0 +1,38 @@
+// Per-step statistics of a run (stats.csv).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace sablier {
+
+struct StepStats {
+  long step = 0;
+  double time = 0.0, dt = 0.0;
+  long particles = 0, active_nodes = 0;
+  int iterations = 0;
+  double residual = 0.0, kinetic_energy = 0.0, potential_energy = 0.0, max_speed = 0.0;
+  double wall_seconds = 0.0;
+  bool hit_cap = false;
+  double transfer_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0,
+         advection_seconds = 0.0;
+};
+
+class StatsTable {
+ public:
+  void add(const StepStats& s) { rows_.push_back(s); }
+  std::size_t size() const { return rows_.size(); }
+  const std::vector<StepStats>& rows() const { return rows_; }
+  std::string csv() const;  // header + one row per step, round-trip precision
+
+ private:
+  std::vector<StepStats> rows_;
+};
+
+// The header of stats.csv.
+extern const char* const kStatsHeader;
+
+// Parses stats.csv text (tests, tools). Throws IoError.
+std::vector<StepStats> parse_stats_csv(const std::string& text);
+
+}  // namespace sablier
