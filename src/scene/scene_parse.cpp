@@ -30,7 +30,7 @@ std::vector<std::string> faces_for(int dim) {
 }
 
 void read_grid(TableReader& root, SceneConfig& s) {
-  TableReader g(root.table("grid"), "grid", root.file());
+  TableReader g = root.sub(root.table("grid"), "grid");
   if (!root.has("grid")) root.fail("grid", "missing; the [grid] table is required");
   const int d = s.dimension;
   s.size = g.vector("size", d, std::nullopt, positive());
@@ -51,7 +51,7 @@ void read_grid(TableReader& root, SceneConfig& s) {
 }
 
 void read_time(TableReader& root, SceneConfig& s) {
-  TableReader t(root.table("time"), "time", root.file());
+  TableReader t = root.sub(root.table("time"), "time");
   s.time.fps = t.number("fps", 30.0, positive());
   s.time.frames = static_cast<int>(t.integer("frames", 30, closed(0, 1e7)));
   s.time.substeps = static_cast<int>(t.integer("substeps", 0, closed(0, 1e6)));
@@ -60,7 +60,7 @@ void read_time(TableReader& root, SceneConfig& s) {
 }
 
 void read_material(TableReader& root, SceneConfig& s) {
-  TableReader m(root.table("material"), "material", root.file());
+  TableReader m = root.sub(root.table("material"), "material");
   MaterialConfig& mat = s.material;
   mat.density = m.number("density", 2500.0, positive());
   mat.mu = m.number("mu", 0.5, closed(0, 5));
@@ -73,7 +73,7 @@ void read_material(TableReader& root, SceneConfig& s) {
               "cohesion needs friction (the cone's apex is at -cohesion/mu); allowed: mu > 0");
   mat.mu_i.reset();
   if (m.has("mu_i")) {
-    TableReader mi(m.table("mu_i"), "material.mu_i", root.file());
+    TableReader mi = root.sub(m.table("mu_i"), "material.mu_i");
     MuIConfig c;
     c.delta_mu = mi.number("delta_mu", std::nullopt, closed(0, 5));
     c.I0 = mi.number("I0", std::nullopt, positive());
@@ -85,14 +85,14 @@ void read_material(TableReader& root, SceneConfig& s) {
 }
 
 void read_solver(TableReader& root, SceneConfig& s) {
-  TableReader t(root.table("solver"), "solver", root.file());
+  TableReader t = root.sub(root.table("solver"), "solver");
   s.solver.tolerance = t.number("tolerance", 1e-3, Range{0.0, 1.0, true, true});
   s.solver.max_iterations = static_cast<int>(t.integer("max_iterations", 500, closed(1, 1e7)));
   t.reject_unknown({});
 }
 
 void read_boundary(TableReader& root, SceneConfig& s) {
-  TableReader b(root.table("boundary"), "boundary", root.file());
+  TableReader b = root.sub(root.table("boundary"), "boundary");
   const std::vector<std::string> faces = faces_for(s.dimension);
   const BoundaryType def = boundary_type(b.choice("default", "slip", kBoundaryTypes));
   s.boundary.faces.fill(def);
@@ -101,7 +101,7 @@ void read_boundary(TableReader& root, SceneConfig& s) {
   s.boundary.openings.clear();
   if (const toml::array* list = b.array_of_tables("opening")) {
     for (std::size_t k = 0; k < list->size(); ++k) {
-      TableReader o(list->get(k)->as_table(), fmt::format("boundary.opening[{}]", k), root.file());
+      TableReader o = root.sub(list->get(k)->as_table(), fmt::format("boundary.opening[{}]", k));
       Opening op;
       op.face = static_cast<int>(
           std::find(faces.begin(), faces.end(), o.choice("face", std::nullopt, faces)) -
@@ -164,10 +164,11 @@ SandConfig read_sand(TableReader& t, const SceneConfig& s) {
   return c;
 }
 
-SceneConfig read_scene(const toml::table& doc, const std::string& file) {
+SceneConfig read_scene(const toml::table& doc, const std::string& file,
+                       const TableReader::Origins& origins) {
   SceneConfig s;
   s.source = file;
-  TableReader root(&doc, "", file);
+  TableReader root(&doc, "", file, &origins);
   s.dimension = static_cast<int>(root.integer("dimension", std::nullopt, closed(2, 3)));
   const long seed = root.integer("seed", 0, closed(0, 9.2e18));
   s.seed = static_cast<std::uint64_t>(seed);
@@ -181,7 +182,7 @@ SceneConfig read_scene(const toml::table& doc, const std::string& file) {
   const toml::array* sand = root.array_of_tables("sand");
   if (!sand || sand->empty()) root.fail("sand", "missing; at least one [[sand]] block is required");
   for (std::size_t k = 0; k < sand->size(); ++k) {
-    TableReader t(sand->get(k)->as_table(), fmt::format("sand[{}]", k), file);
+    TableReader t = root.sub(sand->get(k)->as_table(), fmt::format("sand[{}]", k));
     s.sand.push_back(read_sand(t, s));
   }
   root.reject_unknown({});
@@ -189,7 +190,7 @@ SceneConfig read_scene(const toml::table& doc, const std::string& file) {
 }
 
 // --set dotted.path=value: the value is TOML (a bare word is a string).
-void apply_override(toml::table& doc, const std::string& text) {
+void apply_override(toml::table& doc, const std::string& text, TableReader::Origins& origins) {
   const std::string origin = "--set " + text;
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -210,7 +211,9 @@ void apply_override(toml::table& doc, const std::string& text) {
     keys.push_back(k);
   }
   toml::node* cur = &doc;
+  std::string dotted;  // the key as messages name it: sand[0].jitter
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    dotted += cur->is_array() ? "[" + keys[i] + "]" : (dotted.empty() ? "" : ".") + keys[i];
     if (toml::array* arr = cur->as_array()) {
       char* end = nullptr;
       const unsigned long idx = std::strtoul(keys[i].c_str(), &end, 10);
@@ -228,6 +231,7 @@ void apply_override(toml::table& doc, const std::string& text) {
   toml::table* target = cur->as_table();
   if (!target) throw SceneError(origin + ": \"" + path + "\" does not name a table's key");
   target->insert_or_assign(keys.back(), *parsed.get("v"));
+  origins[(dotted.empty() ? "" : dotted + ".") + keys.back()] = origin;
 }
 
 }  // namespace
@@ -241,8 +245,9 @@ SceneConfig parse_scene(const std::string& text, const std::string& source,
     throw SceneError(fmt::format("{}:{}: TOML syntax error: {}", source, e.source().begin.line,
                                  e.description()));
   }
-  for (const std::string& o : overrides) apply_override(doc, o);
-  return read_scene(doc, source);
+  TableReader::Origins origins;
+  for (const std::string& o : overrides) apply_override(doc, o, origins);
+  return read_scene(doc, source, origins);
 }
 
 SceneConfig load_scene(const std::string& path, const std::vector<std::string>& overrides) {

@@ -43,17 +43,27 @@ std::string Range::text() const {
   return has_lo || has_hi ? s : "any finite number";
 }
 
-TableReader::TableReader(const toml::table* table, std::string prefix, std::string file)
-    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)) {}
+TableReader::TableReader(const toml::table* table, std::string prefix, std::string file,
+                         const Origins* origins)
+    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)), origins_(origins) {}
+
+// A key given by --set is reported as that override, else file:line.
+std::string TableReader::location(const toml::source_region& src, const std::string& key) const {
+  if (origins_) {
+    const auto it = origins_->find(full(key));
+    if (it != origins_->end()) return it->second;
+  }
+  return where(src, file_);
+}
 
 void TableReader::fail(const std::string& key, const std::string& what) const {
-  const std::string loc = table_ ? where(table_->source(), file_) : file_;
+  const std::string loc = table_ ? location(table_->source(), key) : file_;
   throw SceneError(fmt::format("{}: {}: {}", loc, full(key), what));
 }
 
 void TableReader::fail_at(const toml::node* n, const std::string& key,
                           const std::string& what) const {
-  throw SceneError(fmt::format("{}: {}: {}", where(n->source(), file_), full(key), what));
+  throw SceneError(fmt::format("{}: {}: {}", location(n->source(), key), full(key), what));
 }
 
 const toml::node* TableReader::node(const std::string& key) {
@@ -150,14 +160,16 @@ const toml::array* TableReader::array_of_tables(const std::string& key) {
 
 void TableReader::reject_unknown(const std::vector<std::string>& known) const {
   if (!table_) return;
+  std::vector<std::string> candidates(read_.begin(), read_.end());
+  candidates.insert(candidates.end(), known.begin(), known.end());
   for (const auto& [k, v] : *table_) {
     const std::string key(k.str());
     if (read_.count(key) || std::find(known.begin(), known.end(), key) != known.end()) continue;
-    const std::string guess = closest_key(key, known);
+    const std::string guess = closest_key(key, candidates);
     fail_at(&v, key,
             fmt::format("unknown key{}; known keys here: {}",
                         guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
-                        fmt::join(known, ", ")));
+                        fmt::join(candidates, ", ")));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -34,7 +35,14 @@ struct Range {
 
 class TableReader {
  public:
-  TableReader(const toml::table* table, std::string prefix, std::string file);
+  // `origins` maps dotted keys set by --set to their override text.
+  using Origins = std::map<std::string, std::string>;
+  TableReader(const toml::table* table, std::string prefix, std::string file,
+              const Origins* origins = nullptr);
+  // A reader for a sub-table, sharing file and origins.
+  TableReader sub(const toml::table* table, const std::string& prefix) const {
+    return TableReader(table, prefix, file_, origins_);
+  }
 
   bool has(const std::string& key) const { return table_ && table_->contains(key); }
   const toml::node* node(const std::string& key);
@@ -62,7 +70,10 @@ class TableReader {
   const toml::node* required(const std::string& key, bool have_fallback);
 
   const toml::table* table_;
+  std::string location(const toml::source_region& src, const std::string& key) const;
+
   std::string prefix_, file_;
+  const Origins* origins_;
   std::set<std::string> read_;
 };
 

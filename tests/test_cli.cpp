@@ -1,0 +1,112 @@
+// The command-line interface of the engine: `sablier run` writes the outputs
+// the README lists, rejects bad scenes with one line and no output, refuses
+// to mix runs in one folder, and gives bit-identical frames whatever the
+// thread count.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "io/stats_writer.hpp"
+#include "io/writers.hpp"
+
+namespace sablier {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+Result sablier(const std::string& args) {
+  const fs::path log = fs::temp_directory_path() / "sablier_cli_log.txt";
+  const std::string cmd = std::string(SABLIER_BINARY) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return {WEXITSTATUS(status), read_file(log.string())};
+}
+
+std::string scene(const char* name) { return std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name; }
+
+fs::path fresh(const char* name) {
+  const fs::path dir = fs::temp_directory_path() / (std::string("sablier_cli_") + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+const char* const kSmall = " --set time.frames=3 --set grid.resolution=[40,10] --quiet";
+
+TEST(Cli, RunWritesTheOutputs) {
+  const fs::path dir = fresh("run");
+  const Result r = sablier("run " + scene("collapse2d.toml") + " --out " + dir.string() +
+                           " --format vtp,csv" + kSmall);
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"stats.csv", "series.pvd", "scene.toml", "frames/particles_00000.vtp",
+                        "frames/particles_00003.vtp", "frames/particles_00003.csv"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  EXPECT_FALSE(fs::exists(dir / "frames/particles_00004.vtp"));
+  const auto rows = parse_stats_csv(read_file((dir / "stats.csv").string()));
+  ASSERT_GE(rows.size(), 3u);
+  EXPECT_NEAR(rows.back().time, 0.1, 1e-12);  // 3 frames at 30 fps
+  for (const StepStats& s : rows) {
+    EXPECT_GT(s.particles, 0);
+    EXPECT_GT(s.iterations, 0);
+    // Every step's residual is below the tolerance, or the step says it hit the cap.
+    EXPECT_TRUE(s.residual <= 1e-3 || s.hit_cap) << "step " << s.step;
+  }
+  const ParticleFrame f0 = parse_vtp(read_file((dir / "frames/particles_00000.vtp").string()), "f0");
+  EXPECT_EQ(f0.time, 0.0);
+  EXPECT_EQ(f0.dimension, 2);
+  EXPECT_EQ(static_cast<long>(f0.count), rows.front().particles);
+  // The resolved scene runs again and carries the overrides.
+  const std::string resolved = read_file((dir / "scene.toml").string());
+  EXPECT_NE(resolved.find("resolution = [40, 10]"), std::string::npos) << resolved;
+}
+
+TEST(Cli, BadSceneWritesNothing) {
+  const fs::path dir = fresh("bad");
+  const fs::path bad = fs::temp_directory_path() / "sablier_bad_scene.toml";
+  std::ofstream(bad) << read_file(scene("collapse2d.toml")) << "\n[solver]\ntolerence = 1e-3\n";
+  Result r = sablier("run " + bad.string() + " --out " + dir.string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("solver.tolerence"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("did you mean \"tolerance\""), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+  r = sablier("run " + scene("collapse2d.toml") + " --out " + dir.string() + " --set material.mu=nan");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("material.mu"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(Cli, RefusesToMixRuns) {
+  const fs::path dir = fresh("mix");
+  const std::string kSmall = " --set time.frames=2 --quiet";
+  ASSERT_EQ(sablier("run " + scene("bed2d.toml") + " --out " + dir.string() + kSmall).code, 0);
+  const Result again = sablier("run " + scene("bed2d.toml") + " --out " + dir.string() + kSmall);
+  EXPECT_NE(again.code, 0);
+  EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
+  EXPECT_EQ(sablier("run " + scene("bed2d.toml") + " --out " + dir.string() + kSmall + " --overwrite").code, 0);
+}
+
+TEST(Cli, SameResultWhateverTheThreadCount) {
+  const fs::path a = fresh("t1"), b = fresh("t2");
+  ASSERT_EQ(sablier("run " + scene("collapse2d.toml") + " --out " + a.string() + " --threads 1" + kSmall).code, 0);
+  ASSERT_EQ(sablier("run " + scene("collapse2d.toml") + " --out " + b.string() + " --threads 2" + kSmall).code, 0);
+  for (const char* f : {"frames/particles_00001.vtp", "frames/particles_00003.vtp"})
+    EXPECT_EQ(read_file((a / f).string()), read_file((b / f).string())) << f;
+}
+
+TEST(Cli, CheckAndInfo) {
+  Result r = sablier("check " + scene("collapse3d.toml"));
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("particles  20480"), std::string::npos) << r.output;
+  r = sablier("info");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.output.find("openmp"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sablier

@@ -1,0 +1,149 @@
+// Writers: each file read back equals what was written; atomic writes leave
+// no temporary file and fail cleanly.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "io/stats_writer.hpp"
+#include "io/writers.hpp"
+
+namespace sablier {
+namespace {
+
+namespace fs = std::filesystem;
+
+ParticleFrame sample(int d, std::size_t n) {
+  ParticleFrame f;
+  f.dimension = d;
+  f.time = 0.125;
+  f.count = n;
+  const int sc = f.stress_components();
+  for (std::size_t p = 0; p < n; ++p) {
+    for (int a = 0; a < d; ++a) {
+      f.position.push_back(0.1 * p + a + 1.0 / 3.0);
+      f.velocity.push_back(-0.5 * p + a * 1e-7);
+    }
+    f.volume.push_back(1e-6 * (p + 1));
+    f.pressure.push_back(1000.0 + p);
+    f.phi.push_back(0.6 - 1e-3 * p);
+    for (int k = 0; k < sc; ++k) f.stress.push_back(10.0 * k + p + 0.1);
+    f.shear_rate.push_back(0.01 * p);
+    f.id.push_back(static_cast<double>(p));
+  }
+  return f;
+}
+
+fs::path temp_dir(const char* name) {
+  const fs::path dir = fs::temp_directory_path() / (std::string("sablier_test_") + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void expect_same(const ParticleFrame& a, const ParticleFrame& b) {
+  EXPECT_EQ(a.dimension, b.dimension);
+  EXPECT_EQ(a.time, b.time);
+  EXPECT_EQ(a.count, b.count);
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.velocity, b.velocity);
+  EXPECT_EQ(a.volume, b.volume);
+  EXPECT_EQ(a.pressure, b.pressure);
+  EXPECT_EQ(a.phi, b.phi);
+  EXPECT_EQ(a.stress, b.stress);
+  EXPECT_EQ(a.shear_rate, b.shear_rate);
+  EXPECT_EQ(a.id, b.id);
+}
+
+TEST(Writers, VtpRoundTrip) {
+  const fs::path dir = temp_dir("vtp");
+  for (int d : {2, 3}) {
+    for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(57)}) {
+      const ParticleFrame f = sample(d, n);
+      const std::string path = (dir / "f.vtp").string();
+      write_file_atomic(path, format_vtp(f));
+      const ParticleFrame g = parse_vtp(read_file(path), path);
+      if (n == 0) {
+        EXPECT_EQ(g.count, 0u);
+      } else {
+        expect_same(f, g);
+      }
+    }
+  }
+}
+
+TEST(Writers, CsvHeaderAndValues) {
+  for (int d : {2, 3}) {
+    const ParticleFrame f = sample(d, 5);
+    std::istringstream in(format_particle_csv(f));
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, d == 2 ? "x,y,vx,vy,volume,pressure,phi,sxx,syy,sxy"
+                           : "x,y,z,vx,vy,vz,volume,pressure,phi,sxx,syy,szz,sxy,sxz,syz");
+    for (std::size_t p = 0; p < f.count; ++p) {
+      ASSERT_TRUE(std::getline(in, line));
+      std::vector<double> v;
+      std::istringstream ls(line);
+      for (std::string c; std::getline(ls, c, ',');) v.push_back(std::stod(c));
+      ASSERT_EQ(v.size(), static_cast<std::size_t>(2 * d + 3 + f.stress_components()));
+      EXPECT_EQ(v[0], f.position[d * p]);
+      EXPECT_EQ(v[d], f.velocity[d * p]);
+      EXPECT_EQ(v[2 * d], f.volume[p]);
+      EXPECT_EQ(v[2 * d + 1], f.pressure[p]);
+      EXPECT_EQ(v.back(), f.stress[f.stress_components() * (p + 1) - 1]);
+    }
+  }
+}
+
+TEST(Writers, PvdListsFrames) {
+  const std::string pvd = format_pvd({{0.0, "frames/particles_00000.vtp"}, {0.5, "frames/particles_00001.vtp"}});
+  EXPECT_NE(pvd.find("timestep=\"0.5\" group=\"\" part=\"0\" file=\"frames/particles_00001.vtp\""),
+            std::string::npos);
+  EXPECT_NE(pvd.find("type=\"Collection\""), std::string::npos);
+}
+
+TEST(Writers, StatsRoundTrip) {
+  StatsTable t;
+  StepStats s;
+  s.step = 3;
+  s.time = 0.1;
+  s.dt = 1.0 / 30;
+  s.iterations = 17;
+  s.residual = 3.3e-4;
+  s.kinetic_energy = 1.0 / 7;
+  s.hit_cap = true;
+  t.add(s);
+  const auto rows = parse_stats_csv(t.csv());
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].dt, s.dt);
+  EXPECT_EQ(rows[0].kinetic_energy, s.kinetic_energy);
+  EXPECT_EQ(rows[0].iterations, 17);
+  EXPECT_TRUE(rows[0].hit_cap);
+}
+
+TEST(Writers, AtomicWriteReplacesAndLeavesNoTemporary) {
+  const fs::path dir = temp_dir("atomic");
+  const std::string path = (dir / "a.txt").string();
+  write_file_atomic(path, "first");
+  write_file_atomic(path, "second");
+  EXPECT_EQ(read_file(path), "second");
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) ++entries, (void)e;
+  EXPECT_EQ(entries, 1);
+}
+
+TEST(Writers, AtomicWriteFailsCleanly) {
+  const fs::path dir = temp_dir("atomic_fail");
+  write_file_atomic((dir / "file").string(), "x");
+  // A path "under" a regular file cannot be written, even as root.
+  EXPECT_THROW(write_file_atomic((dir / "file" / "a.txt").string(), "y"), IoError);
+  EXPECT_THROW(ensure_directory((dir / "file" / "sub").string()), IoError);
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) ++entries, (void)e;
+  EXPECT_EQ(entries, 1);
+  ensure_directory((dir / "x" / "y" / "z").string());
+  EXPECT_TRUE(fs::is_directory(dir / "x" / "y" / "z"));
+}
+
+}  // namespace
+}  // namespace sablier
