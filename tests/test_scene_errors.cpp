@@ -48,7 +48,7 @@ TEST(Scene, Good2DWithDefaults) {
   EXPECT_DOUBLE_EQ(s.cell_size(), 0.025);
   EXPECT_DOUBLE_EQ(s.gravity[1], -9.81);
   EXPECT_DOUBLE_EQ(s.material.mu, 0.5);
-  EXPECT_DOUBLE_EQ(s.solver.tolerance, 1e-3);
+  EXPECT_DOUBLE_EQ(s.solver.tolerance, 1e-5);
   EXPECT_EQ(s.time.substeps, 0);
   EXPECT_EQ(s.boundary.faces[YMin], BoundaryType::Slip);
   ASSERT_EQ(s.sand.size(), 1u);

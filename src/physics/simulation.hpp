@@ -27,7 +27,11 @@ struct StepInfo {
   StepTimings timings;
   int active_nodes = 0;  // stress rows (= velocity nodes of cells holding particles)
   int viscous_iterations = 0;
+  double restoring_work = 0.0;  // J: energy the decompaction of over-full nodes may add
 };
+
+// Fraction of a node's excess volume fraction removed per step (see build_rows).
+constexpr double kOverfullRelaxation = 0.1;
 
 // Particles created from the scene's [[sand]] regions (METHOD.md step 1:
 // n particles per cell and per axis, V_p = phi_max h^d / n^d).

@@ -57,8 +57,8 @@ struct MaterialConfig {
 };
 
 struct SolverConfig {
-  double tolerance = 1e-3;  // relative velocity change of the last sweep (docs/method.md)
-  int max_iterations = 500;
+  double tolerance = 1e-5;  // relative velocity change of the last sweep (docs/method.md)
+  int max_iterations = 2000;
 };
 
 struct TimeConfig {

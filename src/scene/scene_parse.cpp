@@ -86,8 +86,8 @@ void read_material(TableReader& root, SceneConfig& s) {
 
 void read_solver(TableReader& root, SceneConfig& s) {
   TableReader t = root.sub(root.table("solver"), "solver");
-  s.solver.tolerance = t.number("tolerance", 1e-3, Range{0.0, 1.0, true, true});
-  s.solver.max_iterations = static_cast<int>(t.integer("max_iterations", 500, closed(1, 1e7)));
+  s.solver.tolerance = t.number("tolerance", 1e-5, Range{0.0, 1.0, true, true});
+  s.solver.max_iterations = static_cast<int>(t.integer("max_iterations", 2000, closed(1, 1e7)));
   t.reject_unknown({});
 }
 

@@ -1,0 +1,256 @@
+// Physical checks of the engine (METHOD.md section 5), each against a number
+// with a source: the weight of the sand above (hydrostatics), the energy
+// balance of the supplement (section 1), volume conservation, the
+// Mohr-Coulomb limit of an inclined layer, and the laboratory trend of the
+// column collapse.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "physics/simulation.hpp"
+#include "scene/scene.hpp"
+
+namespace sablier {
+namespace {
+
+SceneConfig scene(const char* name, std::vector<std::string> overrides = {}) {
+  return load_scene(std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name, overrides);
+}
+
+// Runs to time t with adaptive steps; checks every step's solver report
+// (the residual is below the tolerance, or the step says it hit the cap).
+template <int D>
+void run_until(Simulation<D>& sim, double t) {
+  const double tol = sim.scene().solver.tolerance;
+  while (sim.time() < t - 1e-12) {
+    const StepInfo info = sim.step(sim.adaptive_dt(t - sim.time()));
+    ASSERT_TRUE(info.solve.residual <= tol || info.solve.hit_cap)
+        << "step " << sim.steps() << " residual " << info.solve.residual;
+  }
+}
+
+// A bed of depth H at rest: after 1 s it has not moved (max speed < 1e-3
+// m/s), the vertical stress one node above the floor is within 5% of the
+// weight above, rho phi_max g (H - h) (hydrostatics: the side walls are
+// frictionless, so they carry none of it), and every node's stress lies in
+// the Drucker-Prager cone.
+template <int D>
+void bed_at_rest(const char* file, double depth) {
+  Simulation<D> sim(scene(file));
+  run_until(sim, 1.0);
+  EXPECT_LT(sim.max_speed(), 1e-3);
+  const auto& P = sim.problem();
+  const double h = sim.grid().h();
+  const auto& m = sim.scene().material;
+  // Layer one node above the floor: the area-weighted mean vertical stress
+  // (total load over area, which force balance fixes) and, for the report,
+  // the interior mean and the lateral-to-vertical ratio.
+  double load = 0.0, area = 0.0, interior = 0.0, lateral = 0.0;
+  int count = 0;
+  for (int j = 0; j < P.rows(); ++j) {
+    const double tr = P.lambda[j][0];
+    EXPECT_GE(tr, -1e-9 * std::abs(tr) - 1e-12) << "tension at row " << j;
+    EXPECT_LE(deviatoric_norm<D>(P.lambda[j]), P.aperture[j] * tr * (1 + 1e-9) + 1e-9)
+        << "outside the cone at row " << j;
+    const auto n = sim.grid().node_coords(P.node[j]);
+    if (n[D - 1] != 1) continue;
+    const Mat<D> s = sim.row_bulk_stress(j);
+    const double a = P.volume[j] / h;  // horizontal area (length in 2D) of the node's support
+    load += a * s(D - 1, D - 1);
+    area += a;
+    bool inside = true;
+    for (int k = 0; k < D - 1; ++k) inside &= n[k] >= 2 && n[k] <= sim.grid().cells()[k] - 2;
+    if (!inside) continue;
+    interior += s(D - 1, D - 1);
+    lateral += s(0, 0);
+    ++count;
+  }
+  ASSERT_GT(count, 0);
+  const double vertical = load / area;
+  interior /= count;
+  lateral /= count;
+  const double weight = m.density * m.phi_max * 9.81 * (depth - h);
+  std::cout << file << ": sigma_v one node above the floor = " << vertical << " Pa (interior "
+            << interior << "), weight above = " << weight << " Pa ("
+            << 100 * (vertical / weight - 1) << "%); lateral/vertical K = " << lateral / interior
+            << "\n";
+  EXPECT_NEAR(vertical / weight, 1.0, 0.05);
+}
+
+TEST(Physics, BedAtRest2D) { bed_at_rest<2>("bed2d.toml", 0.3); }
+TEST(Physics, BedAtRest3D) { bed_at_rest<3>("bed3d.toml", 0.25); }
+
+// Energy in a closed box (supplement, section 1): without external work the
+// model dissipates, d(E_kin + E_pot)/dt <= 0. Discretely, the grid step is
+// dissipative ((lambda ; gamma) in DP gives lambda.gamma <= 0 and the clamped
+// phi_max term k >= 0), gravity's work on the grid equals the change of
+// potential energy of the advected particles exactly (partition of unity),
+// and G2P cannot raise the kinetic energy (Jensen). The only source is the
+// APIC P2G transfer, which can add at most the particles' affine energy
+// E_aff = 1/2 rho sum_p V_p sum_i N_i |B_p (x_i - x_p)|^2 (Cauchy-Schwarz).
+// Over-full nodes are decompressed gradually (k_j < 0, docs/method.md); that
+// term's power is bounded by -2 sum_j lambda_N k_j, reported per step as
+// restoring_work. So E(n+1) <= E(n) + E_aff(n) + restoring_work, up to the
+// solver's inexactness: the last
+// sweep changes the velocities by a relative amount `residual` in the
+// kinetic-energy norm, hence the slack below of tolerance times the kinetic
+// energy of the step's stress correction, bounded by E_kin + m g dt^2 terms;
+// we use 10 * tolerance * (E_kin + E_aff) + 1e-12 E_pot.
+TEST(Physics, EnergyNeverGrowsInAClosedBox) {
+  SceneConfig s = scene("collapse2d.toml", {"boundary.ymax=\"slip\"", "solver.tolerance=1e-6",
+                                            "solver.max_iterations=20000", "time.cfl=0.5"});
+  Simulation<2> sim(s);
+  const double e0 = sim.kinetic_energy() + sim.potential_energy();
+  double e_prev = e0;
+  double worst = -1e300, restoring = 0.0;
+  while (sim.time() < 1.0) {
+    const double affine = sim.affine_energy();
+    const double kinetic = sim.kinetic_energy();
+    const StepInfo info = sim.step(sim.adaptive_dt(1.0 / 30));
+    const double e = sim.kinetic_energy() + sim.potential_energy();
+    const double slack = 10 * 1e-6 * (kinetic + affine) + 1e-12 * std::abs(e);
+    const double bound = e_prev + affine + info.restoring_work;
+    worst = std::max(worst, (e - bound) / std::abs(e0));
+    restoring += info.restoring_work;
+    EXPECT_LE(e, bound + slack) << "step " << sim.steps();
+    e_prev = e;
+  }
+  std::cout << "energy: E(1 s) / E(0) = " << e_prev / e0
+            << ", worst relative excess over the bound: " << worst
+            << ", total restoring work / E(0): " << restoring / std::abs(e0) << "\n";
+  EXPECT_LT(e_prev, e0);
+}
+
+// Frictionless sand (mu = 0) cannot hold a slope: a column spreads into a
+// layer of uniform depth, equal by volume conservation to the column's area
+// over the box width. Without friction nothing but the inelastic impacts
+// dissipates, so the layer sloshes between the walls like an inviscid
+// liquid; a small viscosity (2 Pa s) damps the sloshing within 4 s.
+TEST(Physics, FrictionlessColumnBecomesAFlatLayer) {
+  SceneConfig s = scene("collapse2d.toml",
+                        {"material.mu=0", "material.viscosity=2", "grid.resolution=[80,20]",
+                         "sand.0.max=[0.2,0.2]", "boundary.xmax=\"slip\""});
+  Simulation<2> sim(s);
+  run_until(sim, 4.0);
+  const double h = sim.grid().h();
+  const int columns = sim.grid().cells()[0];
+  std::vector<double> top(columns, 0.0);
+  for (const Vec<2>& x : sim.particles().position) {
+    const int c = std::min(columns - 1, static_cast<int>(x[0] / h));
+    top[c] = std::max(top[c], x[1]);
+  }
+  const double lo = *std::min_element(top.begin(), top.end());
+  const double hi = *std::max_element(top.begin(), top.end());
+  double mean = 0.0;
+  for (double t : top) mean += t / columns;
+  // At 2 particles per cell and axis, the top particles sit about a quarter
+  // of a cell below the surface.
+  const double expected = 0.2 * 0.2 / 1.0 - 0.25 * h;
+  std::cout << "frictionless layer at 4 s: top particles between " << lo << " and " << hi
+            << " m, mean " << mean << " m, expected " << expected << " m\n";
+  EXPECT_LT(hi - lo, h);
+  EXPECT_NEAR(mean, expected, 0.5 * h);
+}
+
+// A layer on a rough floor under gravity tilted by theta. With walls at both
+// ends it stops when tan(theta) < mu (an infinite layer on a rough base holds
+// up to tan(theta) = mu); with a free downhill end it keeps flowing when
+// theta is clearly above the 2D Mohr-Coulomb limit asin(mu) (the angle above
+// which no stress in the cone balances the layer's own slope).
+double tilted_layer_speed(double theta_deg, double mu, bool free_end, double t) {
+  const double th = theta_deg * M_PI / 180.0;
+  const std::string gravity =
+      "gravity=[" + std::to_string(9.81 * std::sin(th)) + "," + std::to_string(-9.81 * std::cos(th)) + "]";
+  SceneConfig s = scene("collapse2d.toml",
+                        {"grid.resolution=[80,20]", "sand.0.max=[1.0,0.1]", gravity,
+                         "material.mu=" + std::to_string(mu),
+                         std::string("boundary.xmax=") + (free_end ? "\"free\"" : "\"slip\"")});
+  Simulation<2> sim(s);
+  run_until(sim, t);
+  return sim.max_speed();
+}
+
+TEST(Physics, TiltedLayerStopsBelowFrictionAngle) {
+  // tan(20 deg) = 0.36 < mu = 0.5.
+  const double v = tilted_layer_speed(20.0, 0.5, false, 1.5);
+  std::cout << "tilted 20 deg, mu 0.5, walled: max speed at 1.5 s = " << v << " m/s\n";
+  EXPECT_LT(v, 1e-2);
+}
+
+TEST(Physics, TiltedLayerFlowsAboveMohrCoulombLimit) {
+  // asin(0.4) = 23.6 deg < 35 deg.
+  const double v = tilted_layer_speed(35.0, 0.4, true, 1.0);
+  std::cout << "tilted 35 deg, mu 0.4, free end: max speed at 1 s = " << v << " m/s\n";
+  EXPECT_GT(v, 0.3);
+}
+
+// 2D column collapse: the column stops in finite time and its run-out grows
+// with the aspect ratio a = H0 / L0 (Lajeunesse, Mangeney-Castelnau & Vilotte
+// 2004; Lube et al. 2005: (L_inf - L0) / L0 grows roughly linearly for a < 3).
+// "Stopped" at 1.5 s: the kinetic energy is below 1e-3 of its peak and the
+// front has moved less than a tenth of a cell over the last 0.3 s.
+TEST(Physics, CollapseRunOutGrowsWithAspectRatio) {
+  const double h0 = 0.1;
+  double previous = 0.0;
+  for (const double a : {0.5, 1.0, 2.0}) {
+    const double l0 = h0 / a;
+    SceneConfig s = scene("collapse2d.toml", {"grid.resolution=[100,25]",
+                                              "sand.0.max=[" + std::to_string(l0) + "," + std::to_string(h0) + "]"});
+    Simulation<2> sim(s);
+    const auto front = [&] {
+      double f = 0.0;
+      for (const Vec<2>& x : sim.particles().position) f = std::max(f, x[0]);
+      return f;
+    };
+    double peak = 0.0;
+    for (int f = 1; f <= 36; ++f) {
+      run_until(sim, f / 30.0);
+      peak = std::max(peak, sim.kinetic_energy());
+    }
+    const double front_early = front();
+    run_until(sim, 1.5);
+    const double runout = (front() - l0) / l0;
+    std::cout << "collapse a = " << a << ": run-out (L - L0)/L0 = " << runout
+              << ", KE(1.5 s)/peak = " << sim.kinetic_energy() / peak
+              << ", front moved " << front() - front_early << " m in the last 0.3 s"
+              << ", max grain speed " << sim.max_speed() << " m/s\n";
+    EXPECT_LT(sim.kinetic_energy(), 1e-3 * peak) << "a = " << a << " still moving";
+    EXPECT_LT(front() - front_early, 0.1 * sim.grid().h()) << "a = " << a << " front moving";
+    EXPECT_GT(runout, previous) << "a = " << a;
+    previous = runout;
+  }
+}
+
+TEST(Physics, SolverReportsTheCap) {
+  Simulation<2> sim(scene("collapse2d.toml", {"solver.max_iterations=2"}));
+  const StepInfo info = sim.step(1.0 / 60);
+  EXPECT_EQ(info.solve.iterations, 2);
+  EXPECT_TRUE(info.solve.hit_cap);
+  EXPECT_GT(info.solve.residual, sim.scene().solver.tolerance);
+}
+
+// Deterministic: the same scene and seed give the same particles, and so do
+// different thread counts (coloured scatters and fixed-order reductions).
+TEST(Physics, DeterministicWithJitterAndThreads) {
+  const SceneConfig s = scene("collapse2d.toml", {"sand.0.jitter=0.8", "seed=7"});
+  std::vector<std::vector<Vec<2>>> results;
+  for (int threads : {1, 2, 1}) {
+    omp_set_num_threads(threads);
+    Simulation<2> sim(s);
+    for (int k = 0; k < 10; ++k) sim.step(1.0 / 60);
+    results.push_back(sim.particles().position);
+  }
+  omp_set_num_threads(omp_get_num_procs());
+  ASSERT_EQ(results[0].size(), results[1].size());
+  for (std::size_t p = 0; p < results[0].size(); ++p) {
+    ASSERT_EQ(results[0][p], results[1][p]) << "particle " << p;
+    ASSERT_EQ(results[0][p], results[2][p]) << "particle " << p;
+  }
+  Simulation<2> other(scene("collapse2d.toml", {"sand.0.jitter=0.8", "seed=8"}));
+  EXPECT_NE(other.particles().position[0], Simulation<2>(s).particles().position[0]);
+}
+
+}  // namespace
+}  // namespace sablier
