@@ -4,6 +4,8 @@
 // thread count.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,10 +24,13 @@ struct Result {
 };
 
 Result sablier(const std::string& args) {
-  const fs::path log = fs::temp_directory_path() / "sablier_cli_log.txt";
+  // One log per process: ctest runs the tests of this file in parallel.
+  const fs::path log = fs::temp_directory_path() / ("sablier_cli_log_" + std::to_string(::getpid()) + ".txt");
   const std::string cmd = std::string(SABLIER_BINARY) + " " + args + " > " + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
-  return {WEXITSTATUS(status), read_file(log.string())};
+  Result r{WEXITSTATUS(status), read_file(log.string())};
+  fs::remove(log);
+  return r;
 }
 
 std::string scene(const char* name) { return std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name; }
@@ -67,7 +72,7 @@ TEST(Cli, RunWritesTheOutputs) {
 
 TEST(Cli, BadSceneWritesNothing) {
   const fs::path dir = fresh("bad");
-  const fs::path bad = fs::temp_directory_path() / "sablier_bad_scene.toml";
+  const fs::path bad = fs::temp_directory_path() / "sablier_cli_bad_scene.toml";
   std::ofstream(bad) << read_file(scene("collapse2d.toml")) << "\n[solver]\ntolerence = 1e-3\n";
   Result r = sablier("run " + bad.string() + " --out " + dir.string());
   EXPECT_NE(r.code, 0);

@@ -111,4 +111,8 @@ SceneConfig parse_scene(const std::string& toml_text, const std::string& source,
 // back gives the same SceneConfig.
 std::string scene_to_toml(const SceneConfig& scene);
 
+// Every dotted key the parser accepts, as docs/scenes.md names them:
+// "material.mu", "material.mu_i.I0", "sand[].shape", "boundary.opening[].face".
+std::vector<std::string> known_scene_keys();
+
 }  // namespace sablier

@@ -1,11 +1,17 @@
-// Scene files (docs/scenes.md): parsing, --set overrides, validation and the
-// resolved scene written back as TOML.
+// Scene files (docs/scenes.md): parsing, --set overrides and validation.
+// Every key's default is the member initialiser in scene.hpp; the ranges are
+// in the field tables below, which also give known_scene_keys().
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
-#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "scene/scene.hpp"
@@ -14,113 +20,201 @@
 namespace sablier {
 namespace {
 
-const std::vector<std::string> kFaces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
-const std::vector<std::string> kBoundaryTypes{"stick", "slip", "free"};
+using Origins = TableReader::Origins;
+using Names = std::vector<std::string>;
 
-Range positive() { return Range{0.0, Range().hi, true, false}; }
-Range non_negative() { return Range{0.0, Range().hi, false, false}; }
+const Names kFaces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+const Names kBoundaryTypes{"stick", "slip", "free"};
+const Names kShapes2D{"box", "disk"};
+const Names kShapes3D{"box", "cylinder"};
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Range positive() { return Range{0.0, kInf, true, false}; }
+Range non_negative() { return Range{0.0, kInf, false, false}; }
 Range closed(double lo, double hi) { return Range{lo, hi, false, false}; }
+Range open_closed(double lo, double hi) { return Range{lo, hi, true, false}; }
+Range open(double lo, double hi) { return Range{lo, hi, true, true}; }
+
+// A scalar key of the struct S: a double or an int member, with its range.
+template <class S>
+struct Field {
+  const char* key;
+  double S::*real;
+  int S::*whole;
+  Range range;
+};
+template <class S>
+Field<S> real(const char* key, double S::*member, Range range) {
+  return {key, member, nullptr, range};
+}
+template <class S>
+Field<S> whole(const char* key, int S::*member, Range range) {
+  return {key, nullptr, member, range};
+}
+
+const std::vector<Field<TimeConfig>> kTimeFields{
+    real("fps", &TimeConfig::fps, positive()),
+    whole("frames", &TimeConfig::frames, non_negative()),
+    whole("substeps", &TimeConfig::substeps, non_negative()),
+    real("cfl", &TimeConfig::cfl, open_closed(0, 4)),
+};
+const std::vector<Field<MaterialConfig>> kMaterialFields{
+    real("density", &MaterialConfig::density, positive()),
+    real("mu", &MaterialConfig::mu, closed(0, 5)),
+    real("phi_max", &MaterialConfig::phi_max, open_closed(0, 1)),
+    real("viscosity", &MaterialConfig::viscosity, non_negative()),
+    real("cohesion", &MaterialConfig::cohesion, non_negative()),
+    real("cohesion_decay", &MaterialConfig::cohesion_decay, non_negative()),
+};
+const std::vector<Field<MuIConfig>> kMuIFields{
+    real("delta_mu", &MuIConfig::delta_mu, non_negative()),
+    real("I0", &MuIConfig::I0, positive()),
+    real("grain_diameter", &MuIConfig::grain_diameter, positive()),
+};
+const std::vector<Field<SolverConfig>> kSolverFields{
+    real("tolerance", &SolverConfig::tolerance, open(0, 1)),
+    whole("max_iterations", &SolverConfig::max_iterations, closed(1, kInf)),
+};
+const std::vector<Field<SandConfig>> kSandFields{
+    whole("particles_per_cell", &SandConfig::particles_per_cell, closed(1, 8)),
+    real("jitter", &SandConfig::jitter, closed(0, 1)),
+};
+
+// Reads the fields into `s`; absent keys keep the value already in `s` (the
+// default), unless `required`.
+template <class S>
+void read_fields(TableReader& t, S& s, const std::vector<Field<S>>& fields, bool required) {
+  for (const Field<S>& f : fields) {
+    if (f.real) {
+      const std::optional<double> fallback = required ? std::nullopt : std::optional(s.*f.real);
+      s.*f.real = t.number(f.key, fallback, f.range);
+    } else {
+      const std::optional<int> fallback = required ? std::nullopt : std::optional(s.*f.whole);
+      s.*f.whole = t.int_value(f.key, fallback, f.range);
+    }
+  }
+}
+
+// A table of scalar keys only.
+template <class S>
+void read_table(TableReader t, S& s, const std::vector<Field<S>>& fields) {
+  read_fields(t, s, fields, false);
+  t.reject_unknown();
+}
+
+template <class S>
+void add_keys(Names& keys, const std::string& prefix, const std::vector<Field<S>>& fields) {
+  for (const Field<S>& f : fields) keys.push_back(prefix + f.key);
+}
+
+const char* other_dimension(int d) { return d == 2 ? "3D" : "2D"; }
+
+// Keys that the scene's dimension or shape does not use are errors, not
+// silently ignored.
+void reject_keys(TableReader& t, const Names& keys, const std::string& why) {
+  for (const std::string& k : keys)
+    if (t.has(k)) t.fail_at(t.node(k), k, why);
+}
+
+// A choice among `here`; a value that is valid only in the other dimension
+// (`elsewhere`) gets a message saying so.
+std::string dimension_choice(TableReader& t, const std::string& key, const Names& here,
+                             const Names& elsewhere, int d) {
+  const toml::node* n = t.node(key);
+  if (n && n->is_string() && std::count(elsewhere.begin(), elsewhere.end(), n->as_string()->get()))
+    t.fail_at(n, key,
+              fmt::format("\"{}\" is only valid in {} scenes; allowed in {}D: {}",
+                          n->as_string()->get(), other_dimension(d), d, quoted_list(here)));
+  return t.choice(key, std::nullopt, here);
+}
 
 BoundaryType boundary_type(const std::string& s) {
   return s == "stick" ? BoundaryType::Stick : s == "slip" ? BoundaryType::Slip : BoundaryType::Free;
 }
 
-std::vector<std::string> faces_for(int dim) {
-  return std::vector<std::string>(kFaces.begin(), kFaces.begin() + 2 * dim);
-}
+char axis_name(int a) { return "xyz"[a]; }
 
-void read_grid(TableReader& root, SceneConfig& s) {
-  TableReader g = root.sub(root.table("grid"), "grid");
-  if (!root.has("grid")) root.fail("grid", "missing; the [grid] table is required");
+void read_grid(TableReader g, SceneConfig& s) {
   const int d = s.dimension;
   s.size = g.vector("size", d, std::nullopt, positive());
-  const Vec3d res = g.vector("resolution", d, std::nullopt, closed(1, 1e5));
-  for (int a = 0; a < d; ++a) {
-    if (res[a] != std::floor(res[a]))
-      g.fail_at(g.node("resolution"), "resolution", "expected whole numbers of cells per axis");
-    s.resolution[a] = static_cast<int>(res[a]);
-  }
+  s.resolution = g.integers("resolution", d, std::nullopt, closed(1, 1e5));
   for (int a = d; a < 3; ++a) s.size[a] = 0.0, s.resolution[a] = 1;
   const double h = s.size[0] / s.resolution[0];
-  for (int a = 1; a < d; ++a)
-    if (std::abs(s.size[a] / s.resolution[a] - h) > 1e-9 * h)
+  for (int a = 1; a < d; ++a) {
+    const double ha = s.size[a] / s.resolution[a];
+    if (std::abs(ha - h) > 1e-9 * h)
       g.fail_at(g.node("resolution"), "resolution",
-                fmt::format("cells must be cubic: size/resolution is {} on x but {} on axis {}", h,
-                            s.size[a] / s.resolution[a], a));
-  g.reject_unknown({"size", "resolution"});
+                fmt::format("cells are not cubic: grid.size / grid.resolution is {} on x but {} "
+                            "on {}; allowed: grid.size / grid.resolution equal on every axis",
+                            h, ha, axis_name(a)));
+  }
+  g.reject_unknown();
 }
 
-void read_time(TableReader& root, SceneConfig& s) {
-  TableReader t = root.sub(root.table("time"), "time");
-  s.time.fps = t.number("fps", 30.0, positive());
-  s.time.frames = static_cast<int>(t.integer("frames", 30, closed(0, 1e7)));
-  s.time.substeps = static_cast<int>(t.integer("substeps", 0, closed(0, 1e6)));
-  s.time.cfl = t.number("cfl", 1.0, Range{0.0, 4.0, true, false});
-  t.reject_unknown({});
-}
-
-void read_material(TableReader& root, SceneConfig& s) {
-  TableReader m = root.sub(root.table("material"), "material");
+void read_material(TableReader m, SceneConfig& s) {
   MaterialConfig& mat = s.material;
-  mat.density = m.number("density", 2500.0, positive());
-  mat.mu = m.number("mu", 0.5, closed(0, 5));
-  mat.phi_max = m.number("phi_max", 0.6, Range{0.0, 1.0, true, false});
-  mat.viscosity = m.number("viscosity", 0.0, non_negative());
-  mat.cohesion = m.number("cohesion", 0.0, non_negative());
-  mat.cohesion_decay = m.number("cohesion_decay", 0.0, non_negative());
+  read_fields(m, mat, kMaterialFields, false);
   if (mat.cohesion > 0.0 && mat.mu <= 0.0)
     m.fail_at(m.node("cohesion"), "cohesion",
-              "cohesion needs friction (the cone's apex is at -cohesion/mu); allowed: mu > 0");
+              fmt::format("{} needs friction (the yield cone's apex is at -cohesion/mu); "
+                          "allowed: cohesion = 0 when mu = 0",
+                          mat.cohesion));
   mat.mu_i.reset();
   if (m.has("mu_i")) {
-    TableReader mi = root.sub(m.table("mu_i"), "material.mu_i");
+    TableReader mi = m.child("mu_i");
     MuIConfig c;
-    c.delta_mu = mi.number("delta_mu", std::nullopt, closed(0, 5));
-    c.I0 = mi.number("I0", std::nullopt, positive());
-    c.grain_diameter = mi.number("grain_diameter", std::nullopt, positive());
-    mi.reject_unknown({});
+    read_fields(mi, c, kMuIFields, true);
+    mi.reject_unknown();
     mat.mu_i = c;
   }
-  m.reject_unknown({});
+  m.reject_unknown();
 }
 
-void read_solver(TableReader& root, SceneConfig& s) {
-  TableReader t = root.sub(root.table("solver"), "solver");
-  s.solver.tolerance = t.number("tolerance", 1e-5, Range{0.0, 1.0, true, true});
-  s.solver.max_iterations = static_cast<int>(t.integer("max_iterations", 2000, closed(1, 1e7)));
-  t.reject_unknown({});
-}
-
-void read_boundary(TableReader& root, SceneConfig& s) {
-  TableReader b = root.sub(root.table("boundary"), "boundary");
-  const std::vector<std::string> faces = faces_for(s.dimension);
-  const BoundaryType def = boundary_type(b.choice("default", "slip", kBoundaryTypes));
-  s.boundary.faces.fill(def);
-  for (std::size_t f = 0; f < faces.size(); ++f)
-    if (b.has(faces[f])) s.boundary.faces[f] = boundary_type(b.choice(faces[f], {}, kBoundaryTypes));
-  s.boundary.openings.clear();
-  if (const toml::array* list = b.array_of_tables("opening")) {
-    for (std::size_t k = 0; k < list->size(); ++k) {
-      TableReader o = root.sub(list->get(k)->as_table(), fmt::format("boundary.opening[{}]", k));
-      Opening op;
-      op.face = static_cast<int>(
-          std::find(faces.begin(), faces.end(), o.choice("face", std::nullopt, faces)) -
-          faces.begin());
-      op.min = o.vector("min", s.dimension, std::nullopt, Range());
-      op.max = o.vector("max", s.dimension, std::nullopt, Range());
-      const int normal = op.face / 2;
-      for (int a = 0; a < s.dimension; ++a) {
-        if (a == normal) continue;
-        if (op.min[a] > op.max[a])
-          o.fail_at(o.node("max"), "max", fmt::format("component {} is below min; allowed: min <= max", a));
-        if (op.min[a] < 0.0 || op.max[a] > s.size[a])
-          o.fail_at(o.node("min"), "min", fmt::format("the opening leaves the face on axis {}; allowed: 0 <= min <= max <= {}", a, s.size[a]));
-      }
-      o.reject_unknown({});
-      s.boundary.openings.push_back(op);
-    }
+// The opening's tangential extent must lie on its face.
+void check_opening(TableReader& o, const Opening& op, const SceneConfig& s) {
+  for (int a = 0; a < s.dimension; ++a) {
+    if (a == op.face / 2) continue;
+    if (op.min[a] > op.max[a])
+      o.fail_at(o.node("max"), "max",
+                fmt::format("{} on {} is below min = {}; allowed: min <= max", op.max[a],
+                            axis_name(a), op.min[a]));
+    if (op.min[a] < 0.0 || op.max[a] > s.size[a])
+      o.fail_at(o.node(op.min[a] < 0.0 ? "min" : "max"), op.min[a] < 0.0 ? "min" : "max",
+                fmt::format("[{}, {}] on {} leaves the face; allowed: within [0, {}]", op.min[a],
+                            op.max[a], axis_name(a), s.size[a]));
   }
-  b.reject_unknown(faces);
+}
+
+Opening read_opening(TableReader o, const SceneConfig& s) {
+  const int d = s.dimension;
+  const Names here(kFaces.begin(), kFaces.begin() + 2 * d);
+  const Names elsewhere(kFaces.begin() + 2 * d, kFaces.end());
+  Opening op;
+  const std::string face = dimension_choice(o, "face", here, elsewhere, d);
+  op.face = static_cast<int>(std::find(kFaces.begin(), kFaces.end(), face) - kFaces.begin());
+  op.min = o.vector("min", d, std::nullopt, Range());
+  op.max = o.vector("max", d, std::nullopt, Range());
+  check_opening(o, op, s);
+  o.reject_unknown();
+  return op;
+}
+
+void read_boundary(TableReader b, SceneConfig& s) {
+  const int d = s.dimension;
+  const Names faces(kFaces.begin(), kFaces.begin() + 2 * d);
+  if (d == 2)
+    reject_keys(b, {"zmin", "zmax"},
+                "only valid in 3D scenes; allowed in 2D: xmin, xmax, ymin, ymax");
+  const std::string fallback = b.choice("default", "slip", kBoundaryTypes);
+  // In 2D, zmin and zmax keep the struct's value: the scene has no such faces.
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    s.boundary.faces[f] = boundary_type(b.choice(faces[f], fallback, kBoundaryTypes));
+  s.boundary.openings.clear();
+  if (const toml::array* list = b.array_of_tables("opening"))
+    for (std::size_t k = 0; k < list->size(); ++k)
+      s.boundary.openings.push_back(
+          read_opening(b.sub(list->get(k)->as_table(), fmt::format("boundary.opening[{}]", k)), s));
+  b.reject_unknown();
 }
 
 void check_inside(TableReader& t, const SceneConfig& s, const std::string& key, double lo,
@@ -128,113 +222,193 @@ void check_inside(TableReader& t, const SceneConfig& s, const std::string& key, 
   const double eps = 1e-12 * s.size[axis];
   if (lo < -eps || hi > s.size[axis] + eps)
     t.fail_at(t.node(key), key,
-              fmt::format("the sand region [{}, {}] on axis {} leaves the box; allowed: within "
-                          "[0, {}]",
-                          lo, hi, axis, s.size[axis]));
+              fmt::format("the sand region [{}, {}] on {} leaves the box; allowed: within "
+                          "[0, {}] (grid.size)",
+                          lo, hi, axis_name(axis), s.size[axis]));
 }
 
-SandConfig read_sand(TableReader& t, const SceneConfig& s) {
+void read_box(TableReader& t, SandConfig& c, const SceneConfig& s) {
   const int d = s.dimension;
-  SandConfig c;
-  const std::string shape =
-      t.choice("shape", std::nullopt, d == 2 ? std::vector<std::string>{"box", "disk"}
-                                             : std::vector<std::string>{"box", "cylinder"});
-  c.particles_per_cell = static_cast<int>(t.integer("particles_per_cell", 2, closed(1, 8)));
-  c.jitter = t.number("jitter", 0.0, closed(0, 1));
-  c.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
-  if (shape == "box") {
-    c.shape = SandShape::Box;
-    c.min = t.vector("min", d, std::nullopt, Range());
-    c.max = t.vector("max", d, std::nullopt, Range());
-    for (int a = 0; a < d; ++a) {
-      if (!(c.min[a] < c.max[a]))
-        t.fail_at(t.node("max"), "max", fmt::format("empty box on axis {}; allowed: min < max", a));
-      check_inside(t, s, "min", c.min[a], c.max[a], a);
-    }
-    t.reject_unknown({});
-    return c;
+  reject_keys(t, {"center", "radius", "height"}, "not used by shape \"box\"; allowed: min, max");
+  c.shape = SandShape::Box;
+  c.min = t.vector("min", d, std::nullopt, Range());
+  c.max = t.vector("max", d, std::nullopt, Range());
+  for (int a = 0; a < d; ++a) {
+    if (!(c.min[a] < c.max[a]))
+      t.fail_at(t.node("max"), "max",
+                fmt::format("empty box: max = {} on {} is not above min = {}; allowed: min < max",
+                            c.max[a], axis_name(a), c.min[a]));
+    check_inside(t, s, c.min[a] < 0.0 ? "min" : "max", c.min[a], c.max[a], a);
   }
+}
+
+// A disk (2D) or a cylinder along z standing on its base centre (3D).
+void read_round(TableReader& t, SandConfig& c, const SceneConfig& s) {
+  const int d = s.dimension;
+  reject_keys(t, {"min", "max"},
+              d == 2 ? "not used by shape \"disk\"; allowed: center, radius"
+                     : "not used by shape \"cylinder\"; allowed: center, radius, height");
+  if (d == 2) reject_keys(t, {"height"}, "only used by 3D cylinders; allowed: center, radius");
   c.shape = SandShape::Cylinder;
   c.center = t.vector("center", d, std::nullopt, Range());
   c.radius = t.number("radius", std::nullopt, positive());
   if (d == 3) c.height = t.number("height", std::nullopt, positive());
-  for (int a = 0; a < 2; ++a) check_inside(t, s, "center", c.center[a] - c.radius, c.center[a] + c.radius, a);
-  if (d == 3) check_inside(t, s, "height", c.center[2], c.center[2] + c.height, 2);
-  t.reject_unknown({});
+  for (int a = 0; a < 2; ++a)
+    check_inside(t, s, "center", c.center[a] - c.radius, c.center[a] + c.radius, a);
+  if (d == 3)
+    check_inside(t, s, c.center[2] < 0.0 ? "center" : "height", c.center[2], c.center[2] + c.height,
+                 2);
+}
+
+SandConfig read_sand(TableReader t, const SceneConfig& s) {
+  const int d = s.dimension;
+  SandConfig c;
+  const std::string shape = dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D,
+                                             d == 2 ? Names{"cylinder"} : Names{"disk"}, d);
+  if (shape == "box") {
+    read_box(t, c, s);
+  } else {
+    read_round(t, c, s);
+  }
+  read_fields(t, c, kSandFields, false);
+  c.velocity = t.vector("velocity", d, c.velocity, Range());
+  t.reject_unknown();
   return c;
 }
 
-SceneConfig read_scene(const toml::table& doc, const std::string& file,
-                       const TableReader::Origins& origins) {
+void read_all_sand(TableReader& root, SceneConfig& s) {
+  const toml::array* list = root.array_of_tables("sand");
+  const std::string required = "at least one [[sand]] block";
+  if (!list) root.fail("sand", "missing; required: " + required);
+  if (list->empty()) root.fail_at(root.node("sand"), "sand", "empty; required: " + required);
+  for (std::size_t k = 0; k < list->size(); ++k)
+    s.sand.push_back(read_sand(root.sub(list->get(k)->as_table(), fmt::format("sand[{}]", k)), s));
+}
+
+SceneConfig read_scene(const toml::table& doc, const std::string& file, const Origins& origins) {
   SceneConfig s;
   s.source = file;
   TableReader root(&doc, "", file, &origins);
-  s.dimension = static_cast<int>(root.integer("dimension", std::nullopt, closed(2, 3)));
-  const long seed = root.integer("seed", 0, closed(0, 9.2e18));
-  s.seed = static_cast<std::uint64_t>(seed);
-  const Vec3d g_default = s.dimension == 2 ? Vec3d{0, -9.81, 0} : Vec3d{0, 0, -9.81};
-  s.gravity = root.vector("gravity", s.dimension, g_default, Range());
-  read_grid(root, s);
-  read_time(root, s);
-  read_material(root, s);
-  read_solver(root, s);
-  read_boundary(root, s);
-  const toml::array* sand = root.array_of_tables("sand");
-  if (!sand || sand->empty()) root.fail("sand", "missing; at least one [[sand]] block is required");
-  for (std::size_t k = 0; k < sand->size(); ++k) {
-    TableReader t = root.sub(sand->get(k)->as_table(), fmt::format("sand[{}]", k));
-    s.sand.push_back(read_sand(t, s));
-  }
-  root.reject_unknown({});
+  const int d = root.int_value("dimension", std::nullopt, closed(2, 3));
+  s.dimension = d;
+  s.seed = static_cast<std::uint64_t>(root.integer("seed", 0, non_negative()));
+  s.gravity = root.vector("gravity", d, d == 2 ? Vec3d{0, -9.81, 0} : Vec3d{0, 0, -9.81}, Range());
+  read_grid(root.child("grid"), s);
+  read_table(root.child("time"), s.time, kTimeFields);
+  read_material(root.child("material"), s);
+  read_table(root.child("solver"), s.solver, kSolverFields);
+  read_boundary(root.child("boundary"), s);
+  read_all_sand(root, s);
+  root.reject_unknown();
   return s;
 }
 
-// --set dotted.path=value: the value is TOML (a bare word is a string).
-void apply_override(toml::table& doc, const std::string& text, TableReader::Origins& origins) {
-  const std::string origin = "--set " + text;
-  const std::size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw SceneError(origin + ": expected KEY=VALUE, e.g. --set material.mu=0.3");
-  const std::string path = text.substr(0, eq), value = text.substr(eq + 1);
-  toml::table parsed;
-  try {
-    parsed = toml::parse("v = " + value, origin);
-  } catch (const toml::parse_error&) {
-    const bool word = !value.empty() && value.find_first_of(" \t\"'[]{}=#,") == std::string::npos;
-    if (!word) throw SceneError(origin + ": \"" + value + "\" is not a TOML value");
-    parsed = toml::parse("v = \"" + value + "\"", origin);
-  }
-  std::vector<std::string> keys;
-  std::stringstream ss(path);
+// --- --set overrides: "dotted.path=value", the value TOML or a bare word ---
+
+[[noreturn]] void bad_override(const std::string& text, const std::string& what) {
+  throw SceneError(fmt::format(
+      "--set {}: {}; allowed: KEY=VALUE with a dotted KEY and a TOML VALUE or a bare word, e.g. "
+      "material.mu=0.3, grid.resolution=[80,40], boundary.xmin=stick, sand.0.jitter=0.1",
+      text, what));
+}
+
+Names split_key(const std::string& text, const std::string& key) {
+  Names keys;
+  std::stringstream ss(key + ".");
   for (std::string k; std::getline(ss, k, '.');) {
-    if (k.empty()) throw SceneError(origin + ": empty key in \"" + path + "\"");
+    if (k.empty()) bad_override(text, fmt::format("empty name in the key \"{}\"", key));
     keys.push_back(k);
   }
-  toml::node* cur = &doc;
-  std::string dotted;  // the key as messages name it: sand[0].jitter
-  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-    dotted += cur->is_array() ? "[" + keys[i] + "]" : (dotted.empty() ? "" : ".") + keys[i];
-    if (toml::array* arr = cur->as_array()) {
-      char* end = nullptr;
-      const unsigned long idx = std::strtoul(keys[i].c_str(), &end, 10);
-      if (*end != '\0' || idx >= arr->size())
-        throw SceneError(fmt::format("{}: \"{}\" is not an index of the {} blocks", origin,
-                                     keys[i], keys[i ? i - 1 : 0]));
-      cur = arr->get(idx);
-    } else if (toml::table* t = cur->as_table()) {
-      if (!t->contains(keys[i])) t->insert(keys[i], toml::table{});
-      cur = t->get(keys[i]);
-    } else {
-      throw SceneError(origin + ": \"" + keys[i - 1] + "\" is not a table");
-    }
+  return keys;
+}
+
+bool bare_word(const std::string& v) {
+  return !v.empty() && std::all_of(v.begin(), v.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '-' || c == '.' || c == '+';
+  });
+}
+
+// The value as a one-key TOML table {v = value}.
+toml::table parse_value(const std::string& text, const std::string& value) {
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value, std::string_view("--set"));
+  } catch (const toml::parse_error&) {
+    if (!bare_word(value)) bad_override(text, fmt::format("\"{}\" is not a TOML value", value));
+    parsed.insert("v", value);
   }
-  toml::table* target = cur->as_table();
-  if (!target) throw SceneError(origin + ": \"" + path + "\" does not name a table's key");
-  target->insert_or_assign(keys.back(), *parsed.get("v"));
-  origins[(dotted.empty() ? "" : dotted + ".") + keys.back()] = origin;
+  if (parsed.size() != 1) bad_override(text, fmt::format("\"{}\" is not one value", value));
+  return parsed;
+}
+
+bool is_index(const std::string& name) {
+  return !name.empty() && name.size() < 9 &&
+         std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+// Steps from `cur` into its entry `name` (a key, or an index into [[blocks]]),
+// creating missing tables (not blocks: `next` is the name after this one);
+// `dotted` is the path so far, as messages name it.
+toml::node* step_into(toml::node* cur, const std::string& name, const std::string& next,
+                      std::string& dotted, const std::string& text, Origins& origins) {
+  if (toml::array* blocks = cur->as_array()) {
+    const std::size_t k = is_index(name) ? std::stoul(name) : blocks->size();
+    if (k >= blocks->size())
+      bad_override(text, fmt::format("\"{}\" is not an index of the {} [[{}]] blocks", name,
+                                     blocks->size(), dotted));
+    dotted += "[" + name + "]";
+    return blocks->get(k);
+  }
+  toml::table& t = *cur->as_table();
+  dotted += (dotted.empty() ? "" : ".") + name;
+  if (!t.contains(name)) {
+    if (is_index(next))
+      bad_override(text, fmt::format("the scene has no [[{}]] blocks; --set changes blocks but "
+                                     "cannot add them",
+                                     dotted));
+    t.insert(name, toml::table{});
+    origins[dotted] = "--set";
+  }
+  return t.get(name);
+}
+
+void apply_override(toml::table& doc, const std::string& text, Origins& origins) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos) bad_override(text, "no '='");
+  if (eq == 0) bad_override(text, "empty key");
+  const Names keys = split_key(text, text.substr(0, eq));
+  toml::table value = parse_value(text, text.substr(eq + 1));
+  toml::node* cur = &doc;
+  std::string dotted;
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    cur = step_into(cur, keys[i], keys[i + 1], dotted, text, origins);
+    if (!cur->is_table() && !cur->is_array_of_tables())
+      bad_override(text, fmt::format("{} is a value, not a table", dotted));
+  }
+  if (!cur->is_table())
+    bad_override(text, fmt::format("{} holds [[blocks]]: give an index, e.g. {}.0.{}", dotted,
+                                   dotted, keys.back()));
+  cur->as_table()->insert_or_assign(keys.back(), std::move(*value.get("v")));
+  origins[(dotted.empty() ? "" : dotted + ".") + keys.back()] = "--set";
 }
 
 }  // namespace
+
+std::vector<std::string> known_scene_keys() {
+  Names keys{"dimension", "seed", "gravity", "grid.size", "grid.resolution"};
+  add_keys(keys, "time.", kTimeFields);
+  add_keys(keys, "material.", kMaterialFields);
+  add_keys(keys, "material.mu_i.", kMuIFields);
+  add_keys(keys, "solver.", kSolverFields);
+  keys.push_back("boundary.default");
+  for (const std::string& f : kFaces) keys.push_back("boundary." + f);
+  for (const char* k : {"face", "min", "max"})
+    keys.push_back(std::string("boundary.opening[].") + k);
+  for (const char* k : {"shape", "min", "max", "center", "radius", "height", "velocity"})
+    keys.push_back(std::string("sand[].") + k);
+  add_keys(keys, "sand[].", kSandFields);
+  return keys;
+}
 
 SceneConfig parse_scene(const std::string& text, const std::string& source,
                         const std::vector<std::string>& overrides) {
@@ -242,17 +416,22 @@ SceneConfig parse_scene(const std::string& text, const std::string& source,
   try {
     doc = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    throw SceneError(fmt::format("{}:{}: TOML syntax error: {}", source, e.source().begin.line,
-                                 e.description()));
+    throw SceneError(fmt::format("{}:{}: TOML syntax error: {}; allowed: TOML 1.0 (toml.io)",
+                                 source, e.source().begin.line, e.description()));
   }
-  TableReader::Origins origins;
+  Origins origins;
   for (const std::string& o : overrides) apply_override(doc, o, origins);
   return read_scene(doc, source, origins);
 }
 
 SceneConfig load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw SceneError(path + ": is a directory; expected a scene file (.toml)");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open the scene file");
+  if (!in)
+    throw SceneError(
+        fmt::format("{}: cannot open the scene file ({})", path, std::strerror(errno)));
   std::ostringstream ss;
   ss << in.rdbuf();
   return parse_scene(ss.str(), path, overrides);

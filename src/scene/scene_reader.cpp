@@ -1,17 +1,60 @@
 #include "scene/scene_reader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
 
 namespace sablier {
+namespace {
+
+// A float as TOML writes it: 40.0, not 40.
+std::string float_text(double v) {
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".eEni") == std::string::npos) s += ".0";
+  return s;
+}
+
+// What a node holds, for "expected X, found Y" messages.
+std::string describe(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string:
+      return fmt::format("the string \"{}\"", n.as_string()->get());
+    case toml::node_type::integer:
+      return fmt::format("the integer {}", n.as_integer()->get());
+    case toml::node_type::floating_point:
+      return "the float " + float_text(n.as_floating_point()->get());
+    case toml::node_type::boolean:
+      return fmt::format("the boolean {}", n.as_boolean()->get());
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    default:
+      return "a date or time";
+  }
+}
+
+// "sand[0].jitter" -> "sand[0]" -> "sand" -> "".
+std::string parent_key(const std::string& key) {
+  const std::size_t p = key.find_last_of(".[");
+  return p == std::string::npos ? std::string() : key.substr(0, p);
+}
+
+std::string component_name(int k) { return fmt::format("component {} ({}) = ", k, "xyz"[k]); }
+
+// "file:7: material.mu: what", or "--set material.mu: what" for overrides.
+SceneError scene_error(const std::string& loc, const std::string& key, const std::string& what) {
+  return SceneError(fmt::format("{}{} {}: {}", loc, loc == "--set" ? "" : ":", key, what));
+}
+
+}  // namespace
 
 std::string where(const toml::source_region& src, const std::string& fallback) {
   const std::string path = src.path ? *src.path : fallback;
-  if (path.rfind("--set", 0) == 0) return path;
-  if (src.begin.line > 0) return fmt::format("{}:{}", path, src.begin.line);
-  return path;
+  if (path == "--set" || src.begin.line == 0) return path;
+  return fmt::format("{}:{}", path, src.begin.line);
 }
 
 std::string closest_key(const std::string& key, const std::vector<std::string>& candidates) {
@@ -34,36 +77,54 @@ std::string closest_key(const std::string& key, const std::vector<std::string>& 
   return best;
 }
 
-std::string Range::text() const {
+std::string quoted_list(const std::vector<std::string>& words) {
+  return fmt::format("\"{}\"", fmt::join(words, "\", \""));
+}
+
+std::string Range::text(const std::string& name) const {
   const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-  std::string s;
-  if (has_lo) s += fmt::format("{} {} ", lo, lo_open ? "<" : "<=");
-  s += "value";
-  if (has_hi) s += fmt::format(" {} {}", hi_open ? "<" : "<=", hi);
-  return has_lo || has_hi ? s : "any finite number";
+  const char* below = lo_open ? "<" : "<=";
+  const char* above = hi_open ? "<" : "<=";
+  if (has_lo && has_hi) return fmt::format("{} {} {} {} {}", lo, below, name, above, hi);
+  if (has_lo) return fmt::format("{} {} {}", name, lo_open ? ">" : ">=", lo);
+  if (has_hi) return fmt::format("{} {} {}", name, above, hi);
+  return "any finite number";
 }
 
 TableReader::TableReader(const toml::table* table, std::string prefix, std::string file,
                          const Origins* origins)
     : table_(table), prefix_(std::move(prefix)), file_(std::move(file)), origins_(origins) {}
 
-// A key given by --set is reported as that override, else file:line.
+TableReader TableReader::child(const std::string& key) {
+  const toml::node* n = node(key);
+  if (n && !n->is_table())
+    fail_at(
+        n, key,
+        fmt::format("expected a table, found {}; allowed: a [{}] table", describe(*n), full(key)));
+  return sub(n ? n->as_table() : nullptr, full(key));
+}
+
+// A value given by --set (or inside one) is reported as `--set`, else file:line.
 std::string TableReader::location(const toml::source_region& src, const std::string& key) const {
   if (origins_) {
-    const auto it = origins_->find(full(key));
-    if (it != origins_->end()) return it->second;
+    for (std::string k = full(key); !k.empty(); k = parent_key(k)) {
+      const auto it = origins_->find(k);
+      if (it != origins_->end()) return it->second;
+    }
   }
   return where(src, file_);
 }
 
+// A missing key is reported at its table's line (none for the top level).
 void TableReader::fail(const std::string& key, const std::string& what) const {
-  const std::string loc = table_ ? location(table_->source(), key) : file_;
-  throw SceneError(fmt::format("{}: {}: {}", loc, full(key), what));
+  const toml::source_region none{};
+  const toml::source_region& src = table_ && !prefix_.empty() ? table_->source() : none;
+  throw scene_error(location(src, key), full(key), what);
 }
 
 void TableReader::fail_at(const toml::node* n, const std::string& key,
                           const std::string& what) const {
-  throw SceneError(fmt::format("{}: {}: {}", location(n->source(), key), full(key), what));
+  throw scene_error(location(n->source(), key), full(key), what);
 }
 
 const toml::node* TableReader::node(const std::string& key) {
@@ -71,91 +132,139 @@ const toml::node* TableReader::node(const std::string& key) {
   return table_ ? table_->get(key) : nullptr;
 }
 
-const toml::node* TableReader::required(const std::string& key, bool have_fallback) {
+const toml::node* TableReader::required(const std::string& key, bool have_fallback,
+                                        const std::string& allowed) {
   const toml::node* n = node(key);
-  if (!n && !have_fallback) fail(key, "missing; this key is required");
+  if (!n && !have_fallback) fail(key, "missing; required: " + allowed);
   return n;
 }
 
-double TableReader::finite_number(const toml::node* n, const std::string& key) const {
-  double v;
-  if (n->is_integer()) {
-    v = static_cast<double>(n->as_integer()->get());
-  } else if (n->is_floating_point()) {
-    v = n->as_floating_point()->get();
+double TableReader::finite_number(const toml::node* n, const std::string& key,
+                                  const std::string& allowed) const {
+  double v = 0.0;
+  if (const auto* i = n->as_integer()) {
+    v = static_cast<double>(i->get());
+  } else if (const auto* f = n->as_floating_point()) {
+    v = f->get();
   } else {
-    fail_at(n, key, fmt::format("expected a number, found a {}", toml::impl::node_type_friendly_names[static_cast<int>(n->type())]));
+    fail_at(n, key, fmt::format("expected a number, found {}; allowed: {}", describe(*n), allowed));
   }
-  if (!std::isfinite(v)) fail_at(n, key, fmt::format("{} is not a finite number", v));
+  if (!std::isfinite(v))
+    fail_at(n, key, fmt::format("{} is not a finite number; allowed: {}", v, allowed));
   return v;
+}
+
+long TableReader::whole_number(const toml::node* n, const std::string& key,
+                               const std::string& allowed) const {
+  if (!n->is_integer())
+    fail_at(n, key,
+            fmt::format("expected an integer, found {}; allowed: {}", describe(*n), allowed));
+  return static_cast<long>(n->as_integer()->get());
+}
+
+void TableReader::check_range(const toml::node* n, const std::string& key, double v,
+                              const Range& range, const std::string& prefix) const {
+  if (!range.contains(v))
+    fail_at(n, key, fmt::format("{}{} is out of range; allowed: {}", prefix, v, range.text(key)));
 }
 
 double TableReader::number(const std::string& key, std::optional<double> fallback,
                            const Range& range) {
-  const toml::node* n = required(key, fallback.has_value());
+  const std::string allowed = range.text(key);
+  const toml::node* n = required(key, fallback.has_value(), "a number, " + allowed);
   if (!n) return *fallback;
-  const double v = finite_number(n, key);
-  if (!range.contains(v))
-    fail_at(n, key, fmt::format("{} is out of range; allowed: {}", v, range.text()));
+  const double v = finite_number(n, key, allowed);
+  check_range(n, key, v, range, "");
   return v;
 }
 
 long TableReader::integer(const std::string& key, std::optional<long> fallback,
                           const Range& range) {
-  const toml::node* n = required(key, fallback.has_value());
+  const std::string allowed = "an integer, " + range.text(key);
+  const toml::node* n = required(key, fallback.has_value(), allowed);
   if (!n) return *fallback;
-  if (!n->is_integer())
-    fail_at(n, key, fmt::format("expected an integer, found a {}; allowed: integer {}",
-                                toml::impl::node_type_friendly_names[static_cast<int>(n->type())],
-                                range.text()));
-  const long v = static_cast<long>(n->as_integer()->get());
+  const long v = whole_number(n, key, allowed);
   if (!range.contains(static_cast<double>(v)))
-    fail_at(n, key, fmt::format("{} is out of range; allowed: integer {}", v, range.text()));
+    fail_at(n, key, fmt::format("{} is out of range; allowed: {}", v, allowed));
   return v;
+}
+
+int TableReader::int_value(const std::string& key, std::optional<int> fallback,
+                           const Range& range) {
+  const long v = integer(key, fallback, range);
+  constexpr int kMax = std::numeric_limits<int>::max();
+  if (v > kMax)
+    fail_at(node(key), key, fmt::format("{} is too large; allowed: {} <= {}", v, key, kMax));
+  return static_cast<int>(v);
 }
 
 std::string TableReader::choice(const std::string& key, std::optional<std::string> fallback,
                                 const std::vector<std::string>& allowed) {
-  const toml::node* n = required(key, fallback.has_value());
+  const std::string list = quoted_list(allowed);
+  const toml::node* n = required(key, fallback.has_value(), "one of " + list);
   if (!n) return *fallback;
-  const std::string list = fmt::format("\"{}\"", fmt::join(allowed, "\", \""));
-  if (!n->is_string()) fail_at(n, key, "expected a string; allowed: " + list);
+  if (!n->is_string())
+    fail_at(n, key, fmt::format("expected a string, found {}; allowed: {}", describe(*n), list));
   const std::string v = n->as_string()->get();
   if (std::find(allowed.begin(), allowed.end(), v) == allowed.end())
     fail_at(n, key, fmt::format("\"{}\" is not allowed; allowed: {}", v, list));
   return v;
 }
 
-Vec3d TableReader::vector(const std::string& key, int count, std::optional<Vec3d> fallback,
+const toml::array* TableReader::array(const std::string& key, int n, bool have_fallback,
+                                      const std::string& allowed) {
+  const toml::node* node = required(key, have_fallback, allowed);
+  if (!node) return nullptr;
+  const toml::array* a = node->as_array();
+  if (!a)
+    fail_at(node, key,
+            fmt::format("expected an array, found {}; allowed: {}", describe(*node), allowed));
+  if (static_cast<int>(a->size()) != n)
+    fail_at(node, key,
+            fmt::format("expected {} components (one per axis), found {}; allowed: {}", n,
+                        a->size(), allowed));
+  return a;
+}
+
+Vec3d TableReader::vector(const std::string& key, int n, std::optional<Vec3d> fallback,
                           const Range& range) {
-  const toml::node* n = required(key, fallback.has_value());
-  if (!n) return *fallback;
-  const toml::array* a = n->as_array();
-  if (!a || static_cast<int>(a->size()) != count)
-    fail_at(n, key, fmt::format("expected an array of {} numbers (one per axis)", count));
+  const bool any = !std::isfinite(range.lo) && !std::isfinite(range.hi);
+  const std::string allowed =
+      any ? fmt::format("an array of {} finite numbers", n)
+          : fmt::format("an array of {} numbers, each {}", n, range.text(key));
+  const toml::array* a = array(key, n, fallback.has_value(), allowed);
+  if (!a) return *fallback;
   Vec3d v{0, 0, 0};
-  for (int k = 0; k < count; ++k) {
-    v[k] = finite_number(a->get(k), key);
-    if (!range.contains(v[k]))
-      fail_at(n, key,
-              fmt::format("component {} = {} is out of range; allowed: {}", k, v[k], range.text()));
+  for (int k = 0; k < n; ++k) {
+    v[k] = finite_number(a->get(k), key, allowed);
+    check_range(a->get(k), key, v[k], range, component_name(k));
   }
   return v;
 }
 
-const toml::table* TableReader::table(const std::string& key) {
-  const toml::node* n = node(key);
-  if (!n) return nullptr;
-  if (!n->is_table()) fail_at(n, key, "expected a table");
-  return n->as_table();
+Vec3i TableReader::integers(const std::string& key, int n, std::optional<Vec3i> fallback,
+                            const Range& range) {
+  const std::string allowed = fmt::format("an array of {} integers, each {}", n, range.text(key));
+  const toml::array* a = array(key, n, fallback.has_value(), allowed);
+  if (!a) return *fallback;
+  Vec3i v{0, 0, 0};
+  for (int k = 0; k < n; ++k) {
+    const long x = whole_number(a->get(k), key, allowed);
+    check_range(a->get(k), key, static_cast<double>(x), range, component_name(k));
+    v[k] = static_cast<int>(x);
+  }
+  return v;
 }
 
 const toml::array* TableReader::array_of_tables(const std::string& key) {
   const toml::node* n = node(key);
   if (!n) return nullptr;
-  if (!n->is_array_of_tables())
-    fail_at(n, key, fmt::format("expected an array of tables ([[{}]] blocks)", full(key)));
-  return n->as_array();
+  const toml::array* a = n->as_array();
+  if (!a || !(a->empty() || a->is_array_of_tables()))
+    fail_at(n, key,
+            fmt::format("expected [[{0}]] blocks, found {1}; allowed: [[{0}]] blocks (tables)",
+                        full(key), describe(*n)));
+  return a;
 }
 
 void TableReader::reject_unknown(const std::vector<std::string>& known) const {
@@ -164,12 +273,12 @@ void TableReader::reject_unknown(const std::vector<std::string>& known) const {
   candidates.insert(candidates.end(), known.begin(), known.end());
   for (const auto& [k, v] : *table_) {
     const std::string key(k.str());
-    if (read_.count(key) || std::find(known.begin(), known.end(), key) != known.end()) continue;
+    if (std::find(candidates.begin(), candidates.end(), key) != candidates.end()) continue;
     const std::string guess = closest_key(key, candidates);
     fail_at(&v, key,
-            fmt::format("unknown key{}; known keys here: {}",
-                        guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
-                        fmt::join(candidates, ", ")));
+            guess.empty() ? fmt::format("unknown key \"{}\"; allowed here: {}", key,
+                                        fmt::join(candidates, ", "))
+                          : fmt::format("unknown key \"{}\"; did you mean \"{}\"?", key, guess));
   }
 }
 

@@ -1,7 +1,8 @@
 // Strict reading of one TOML table: typed getters with ranges, every error a
-// SceneError naming the file (or the --set override), line, dotted key and
-// what is allowed; keys never read are reported as unknown, with the closest
-// known key suggested.
+// one-line SceneError `<where>: <dotted.key>: <what is wrong>; <what is
+// allowed>`, where <where> is `file:line`, `file` or `--set`. Keys present
+// but never read are reported as unknown, with the closest known key
+// suggested.
 #pragma once
 
 #include <toml++/toml.h>
@@ -17,17 +18,22 @@
 
 namespace sablier {
 
-// Where a node came from, for messages: "file:line" or "--set key=value".
+// Where a node came from: "file:line", or `fallback` when it has no line.
 std::string where(const toml::source_region& src, const std::string& fallback);
 
 // Closest candidate by edit distance (empty if none is close).
 std::string closest_key(const std::string& key, const std::vector<std::string>& candidates);
 
+// "\"a\", \"b\", \"c\""
+std::string quoted_list(const std::vector<std::string>& words);
+
+// An interval of allowed values; either end may be open or absent.
 struct Range {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
-  std::string text() const;  // "0 < x <= 1" style, with x the key's last name
+  // "0 <= mu <= 5", "fps > 0", "any finite number"
+  std::string text(const std::string& name) const;
   bool contains(double v) const {
     return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
   }
@@ -35,43 +41,60 @@ struct Range {
 
 class TableReader {
  public:
-  // `origins` maps dotted keys set by --set to their override text.
+  // Dotted keys (and tables) set by --set, mapped to the origin to report.
   using Origins = std::map<std::string, std::string>;
+
+  // `table` may be null (an absent optional table: every key takes its default).
   TableReader(const toml::table* table, std::string prefix, std::string file,
               const Origins* origins = nullptr);
-  // A reader for a sub-table, sharing file and origins.
+  // A reader for another table (an element of an array of tables), sharing
+  // file and origins.
   TableReader sub(const toml::table* table, const std::string& prefix) const {
     return TableReader(table, prefix, file_, origins_);
   }
+  // A reader for the sub-table `key` (absent: an empty reader).
+  TableReader child(const std::string& key);
 
   bool has(const std::string& key) const { return table_ && table_->contains(key); }
+  // The node (null if absent); marks the key as known.
   const toml::node* node(const std::string& key);
 
+  // Getters: no fallback means the key is required.
   double number(const std::string& key, std::optional<double> fallback, const Range& range);
   long integer(const std::string& key, std::optional<long> fallback, const Range& range);
+  // An integer that must also fit an int.
+  int int_value(const std::string& key, std::optional<int> fallback, const Range& range);
   std::string choice(const std::string& key, std::optional<std::string> fallback,
                      const std::vector<std::string>& allowed);
-  // A vector of `n` finite numbers, each in `range`.
+  // `n` finite numbers (or integers), each in `range`; components past `n` are 0.
   Vec3d vector(const std::string& key, int n, std::optional<Vec3d> fallback, const Range& range);
-  const toml::table* table(const std::string& key);
+  Vec3i integers(const std::string& key, int n, std::optional<Vec3i> fallback, const Range& range);
+  // An array of tables ([[key]] blocks); null if absent, possibly empty.
   const toml::array* array_of_tables(const std::string& key);
 
-  // Throws for keys present in the table but never read or allowed.
-  void reject_unknown(const std::vector<std::string>& known) const;
+  // Throws for keys present in the table but neither read nor in `known`.
+  void reject_unknown(const std::vector<std::string>& known = {}) const;
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
   [[noreturn]] void fail_at(const toml::node* n, const std::string& key,
                             const std::string& what) const;
-  std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
-  const std::string& file() const { return file_; }
+  std::string full(const std::string& key) const {
+    return prefix_.empty() ? key : prefix_ + "." + key;
+  }
 
  private:
-  double finite_number(const toml::node* n, const std::string& key) const;
-  const toml::node* required(const std::string& key, bool have_fallback);
-
-  const toml::table* table_;
+  const toml::node* required(const std::string& key, bool have_fallback,
+                             const std::string& allowed);
+  const toml::array* array(const std::string& key, int n, bool have_fallback,
+                           const std::string& allowed);
+  double finite_number(const toml::node* n, const std::string& key,
+                       const std::string& allowed) const;
+  long whole_number(const toml::node* n, const std::string& key, const std::string& allowed) const;
+  void check_range(const toml::node* n, const std::string& key, double v, const Range& range,
+                   const std::string& prefix) const;
   std::string location(const toml::source_region& src, const std::string& key) const;
 
+  const toml::table* table_;
   std::string prefix_, file_;
   const Origins* origins_;
   std::set<std::string> read_;

@@ -1,0 +1,279 @@
+// Scene files (docs/scenes.md): good scenes parse to the expected values and
+// defaults, --set overrides are applied and checked like the file, the
+// resolved scene round-trips exactly, every class of bad input gets a one-line
+// error `<where>: <key>: <what is wrong>; <what is allowed>`, and the keys the
+// reference documents are exactly the keys the parser accepts.
+#include <gtest/gtest.h>
+#include <toml++/toml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "scene/scene.hpp"
+#include "scene_fixtures.hpp"
+
+namespace sablier {
+namespace {
+
+using namespace sablier::test;
+
+
+TEST(SceneFile, Defaults2D) {
+  SceneConfig e;  // scene.hpp's defaults, but for what the scene gives
+  e.dimension = 2;
+  e.size = v(1.0, 0.5);
+  e.resolution = {40, 20, 1};
+  e.gravity = v(0, -9.81);
+  e.sand = {SandConfig{SandShape::Box, v(0, 0), v(0.2, 0.4)}};
+  const SceneConfig s = parse_scene(kBase2D, "good.toml");
+  EXPECT_EQ(s.source, "good.toml");
+  EXPECT_DOUBLE_EQ(s.cell_size(), 0.025);
+  expect_same(s, e);
+}
+
+TEST(SceneFile, Defaults3D) {
+  SceneConfig e;
+  e.dimension = 3;
+  e.size = v(0.5, 0.25, 0.25);
+  e.resolution = {20, 10, 10};
+  e.gravity = v(0, 0, -9.81);
+  e.sand = {SandConfig{SandShape::Cylinder, {}, {}, v(0.25, 0.125, 0), 0.1, 0.2}};
+  expect_same(parse_scene(kBase3D, "good3d.toml"), e);
+}
+
+TEST(SceneFile, EveryKey2D) {
+  using B = BoundaryType;
+  SceneConfig e;
+  e.dimension = 2;
+  e.seed = 42;
+  e.gravity = v(1.5, -9.0);
+  e.size = v(2.0, 1.0);
+  e.resolution = {80, 40, 1};
+  e.time = TimeConfig{60, 12, 4, 0.5};
+  e.material = MaterialConfig{1500, 0.38, 0.62, 0.01, 20.0, 3.0, MuIConfig{0.3, 0.3, 2e-3}};
+  e.solver = SolverConfig{1e-6, 300};
+  e.boundary.faces = {B::Stick, B::Slip, B::Stick, B::Free, B::Slip, B::Slip};
+  e.boundary.openings = {Opening{YMin, v(0.9, 0), v(1.1, 0)}};
+  e.sand = {SandConfig{SandShape::Cylinder, {}, {}, v(0.5, 0.5), 0.25, 0, 3, 0.5, v(1, -0.5)},
+            SandConfig{SandShape::Box, v(1, 0), v(2, 0.5)}};
+  expect_same(parse_scene(kFull2D, "full.toml"), e);
+}
+
+TEST(SceneFile, EquivalentSpellings) {
+  // [material.mu_i] as a table, [[sand]] as an inline array, a 3D box, 3D faces.
+  const SceneConfig s = parse_scene(R"(dimension = 3
+sand = [{ shape = "box", min = [0, 0, 0], max = [0.5, 0.25, 0.1] }]
+[grid]
+size = [0.5, 0.25, 0.25]
+resolution = [20, 10, 10]
+[material.mu_i]
+delta_mu = 0.26
+I0 = 0.279
+grain_diameter = 1e-3
+[boundary]
+zmin = "stick"
+zmax = "free"
+[[boundary.opening]]
+face = "zmin"
+min = [0.2, 0.1, 0.0]
+max = [0.3, 0.15, 0.0]
+)",
+                                    "spellings.toml");
+  ASSERT_TRUE(s.material.mu_i.has_value());
+  EXPECT_EQ(s.material.mu_i->I0, 0.279);
+  EXPECT_EQ(s.boundary.faces[ZMin], BoundaryType::Stick);
+  EXPECT_EQ(s.boundary.faces[ZMax], BoundaryType::Free);
+  EXPECT_EQ(s.boundary.openings.at(0).face, ZMin);
+  EXPECT_EQ(s.sand.at(0).max, (Vec3d{0.5, 0.25, 0.1}));
+}
+
+TEST(SceneFile, ShippedScenesLoad) {
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(SABLIER_SOURCE_DIR "/scenes")) {
+    if (e.path().extension() != ".toml") continue;
+    EXPECT_NO_THROW(load_scene(e.path().string())) << e.path();
+    ++n;
+  }
+  EXPECT_GT(n, 0);
+}
+
+// ------------------------------------------------------------------ overrides
+
+TEST(SceneFile, OverridesApply) {
+  const SceneConfig s =
+      parse_scene(kBase2D, "good.toml",
+                  {"material.mu=0.3", "grid.resolution=[80,40]", "boundary.xmin=\"stick\"",
+                   "boundary.xmax=free", "sand.0.jitter=0.25", "solver.tolerance=1e-3", "seed=7",
+                   "time.frames=3", "time.frames=4",
+                   "material.mu_i={delta_mu=0.1, I0=0.2, grain_diameter=1e-3}"});
+  EXPECT_EQ(s.material.mu, 0.3);
+  EXPECT_EQ(s.resolution, (Vec3i{80, 40, 1}));
+  EXPECT_EQ(s.boundary.faces[XMin], BoundaryType::Stick);
+  EXPECT_EQ(s.boundary.faces[XMax], BoundaryType::Free);
+  EXPECT_EQ(s.sand[0].jitter, 0.25);
+  EXPECT_EQ(s.solver.tolerance, 1e-3);  // [solver] created by the override
+  EXPECT_EQ(s.seed, 7u);
+  EXPECT_EQ(s.time.frames, 4);  // the last override wins
+  ASSERT_TRUE(s.material.mu_i.has_value());
+  EXPECT_EQ(s.material.mu_i->I0, 0.2);
+}
+
+TEST(SceneFile, BadOverrides) {
+  struct Case {
+    const char* set;
+    const char* prefix;    // the message starts with this
+    const char* fragment;  // and contains this
+  };
+  const Case cases[] = {
+      {"material.mu=-1", "--set material.mu: -1 is out of range", "allowed: 0 <= mu <= 5"},
+      {"material.mue=0.3", "--set material.mue: unknown key", "did you mean \"mu\"?"},
+      {"materail.mu=1", "--set materail: unknown key", "did you mean \"material\"?"},
+      {"grid.size=[1]", "--set grid.size: expected 2 components", "allowed: an array of 2"},
+      {"grid.resolution=[80.0,40]", "--set grid.resolution: expected an integer", "80.0"},
+      {"time.fps=fast", "--set time.fps: expected a number, found the string \"fast\"", "fps > 0"},
+      {"boundary.zmin=stick", "--set boundary.zmin: only valid in 3D", "xmin, xmax, ymin, ymax"},
+      {"material.mu_i.I0=0.3", "--set material.mu_i.delta_mu: missing", "delta_mu >= 0"},
+      {"sand.0.shape=cylinder", "--set sand[0].shape: \"cylinder\" is only valid in 3D",
+       "\"box\", \"disk\""},
+      {"nokey", "--set nokey: no '='", "KEY=VALUE"},
+      {"=3", "--set =3: empty key", "KEY=VALUE"},
+      {"material..mu=1", "--set material..mu=1: empty name", "KEY=VALUE"},
+      {"material.mu=[1,", "--set material.mu=[1,: \"[1,\" is not a TOML value", "KEY=VALUE"},
+      {"material.mu=1 2", "--set material.mu=1 2: \"1 2\" is not a TOML value", "KEY=VALUE"},
+      {"material.mu=", "--set material.mu=: \"\" is not a TOML value", "KEY=VALUE"},
+      {"sand.5.jitter=0", "--set sand.5.jitter=0: \"5\" is not an index", "KEY=VALUE"},
+      {"boundary.opening.0.face=ymin",
+       "--set boundary.opening.0.face=ymin: the scene has no "
+       "[[boundary.opening]] blocks",
+       "KEY=VALUE"},
+      {"sand.jitter=0", "--set sand.jitter=0: sand holds [[blocks]]", "sand.0.jitter"},
+      {"dimension.x=1", "--set dimension.x=1: dimension is a value, not a table", "KEY=VALUE"},
+  };
+  for (const Case& c : cases) {
+    const std::string msg = error_of(kBase2D, {c.set});
+    EXPECT_EQ(msg.rfind(c.prefix, 0), 0u) << c.set << " -> " << msg;
+    EXPECT_NE(msg.find(c.fragment), std::string::npos) << c.set << " -> " << msg;
+  }
+}
+
+// ----------------------------------------------------------------- round trip
+
+TEST(SceneFile, ResolvedSceneRoundTrips) {
+  for (const std::string& text : {kBase2D, kBase3D, kFull2D}) {
+    const SceneConfig a = parse_scene(text, "a.toml");
+    const SceneConfig b = parse_scene(scene_to_toml(a), "a.toml");
+    expect_same(a, b);
+    EXPECT_EQ(scene_to_toml(a), scene_to_toml(b));
+  }
+}
+
+TEST(SceneFile, RandomDoublesRoundTripExactly) {
+  std::mt19937_64 rng(1234);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  SceneConfig s = parse_scene(kFull2D, "r.toml");
+  SceneConfig s3 = parse_scene(kBase3D, "r3.toml",
+                               {"material.mu_i={delta_mu=0.1, I0=0.2, "
+                                "grain_diameter=1e-3}"});
+  for (int trial = 0; trial < 50; ++trial) {
+    for (SceneConfig* x : {&s, &s3}) {
+      x->seed = rng() >> 1;
+      x->gravity[0] = -20 * unit(rng);
+      x->time.fps = 1e3 * unit(rng) + 1e-9;
+      x->time.cfl = 4 * unit(rng) + 1e-9;
+      x->material.mu = 4 * unit(rng) + 1e-9;
+      x->material.cohesion = 1e-300 * unit(rng);
+      x->material.viscosity = std::ldexp(unit(rng), 200);
+      x->material.mu_i->grain_diameter = 1e-3 * unit(rng) + 1e-12;
+      x->solver.tolerance = unit(rng) * 0.5 + 1e-17;
+      x->sand[0].jitter = unit(rng);
+      x->sand[0].radius = 0.1 * unit(rng) + 1e-9;
+      x->sand[0].velocity[1] = (unit(rng) - 0.5) * 1e5;
+      expect_same(*x, parse_scene(scene_to_toml(*x), "r.toml"));
+    }
+  }
+}
+
+// -------------------------------------------------------- the documented keys
+
+// Leaf keys of a TOML document, arrays of tables as "name[]".
+void collect_keys(const toml::table& t, const std::string& prefix, std::set<std::string>& out) {
+  for (const auto& [k, v] : t) {
+    const std::string key = prefix + std::string(k.str());
+    if (const toml::table* sub = v.as_table()) {
+      collect_keys(*sub, key + ".", out);
+    } else if (v.is_array_of_tables()) {
+      for (const toml::node& e : *v.as_array()) collect_keys(*e.as_table(), key + "[].", out);
+    } else {
+      out.insert(key);
+    }
+  }
+}
+
+std::set<std::string> known_set() {
+  const std::vector<std::string> keys = known_scene_keys();
+  std::set<std::string> set(keys.begin(), keys.end());
+  EXPECT_EQ(set.size(), keys.size()) << "duplicates in known_scene_keys()";
+  return set;
+}
+
+TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
+  // The resolved scenes of a full 2D and a full 3D scene write every key
+  // (faces explicitly, so not boundary.default); they parse back, so each is
+  // accepted.
+  const std::string full3d = kBase3D +
+                             "[[sand]]\nshape = \"box\"\nmin = [0, 0, 0]\nmax = [0.1, 0.1, 0.1]\n"
+                             "[[boundary.opening]]\nface = \"zmin\"\nmin = [0.1, 0.1, 0]\n"
+                             "max = [0.2, 0.2, 0]\n[material]\n"
+                             "mu_i = { delta_mu = 0.26, I0 = 0.279, grain_diameter = 1e-3 }\n";
+  std::set<std::string> written{"boundary.default"};
+  for (const std::string& text : {kFull2D, full3d}) {
+    const std::string resolved = scene_to_toml(parse_scene(text, "full.toml"));
+    collect_keys(toml::parse(resolved), "", written);
+    EXPECT_NO_THROW(parse_scene(resolved, "resolved.toml"));
+  }
+  EXPECT_EQ(written, known_set());
+}
+
+TEST(SceneFile, DocumentedKeysAreTheKnownKeys) {
+  std::ifstream in(SABLIER_SOURCE_DIR "/docs/scenes.md");
+  ASSERT_TRUE(in) << "docs/scenes.md";
+  std::set<std::string> documented;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("| `", 0) != 0) continue;  // key rows: | `material.mu` | ...
+    const std::size_t end = line.find('`', 3);
+    ASSERT_NE(end, std::string::npos) << line;
+    EXPECT_TRUE(documented.insert(line.substr(3, end - 3)).second) << "documented twice: " << line;
+  }
+  const std::set<std::string> known = known_set();
+  for (const std::string& k : known) EXPECT_TRUE(documented.count(k)) << "undocumented: " << k;
+  for (const std::string& k : documented) EXPECT_TRUE(known.count(k)) << "not a scene key: " << k;
+}
+
+TEST(SceneFile, DocumentedCompleteScenesParse) {
+  std::ifstream in(SABLIER_SOURCE_DIR "/docs/scenes.md");
+  std::string line, block;
+  bool inside = false;
+  int complete = 0;
+  while (std::getline(in, line)) {
+    if (!inside && line == "```toml") {
+      inside = true;
+      block.clear();
+    } else if (inside && line == "```") {
+      inside = false;
+      if (block.rfind("dimension =", 0) != 0 || block.find("[[sand]]") == std::string::npos)
+        continue;  // a fragment, not a whole scene
+      EXPECT_NO_THROW(parse_scene(block, "docs/scenes.md")) << block;
+      ++complete;
+    } else if (inside) {
+      block += line + "\n";
+    }
+  }
+  EXPECT_EQ(complete, 2);
+}
+
+}  // namespace
+}  // namespace sablier
