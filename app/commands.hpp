@@ -16,10 +16,32 @@ struct RunOptions {
   bool overwrite = false;
 };
 
+// `sablier render DIR`: PNG pictures of a run's frames.
+struct RenderCommandOptions {
+  std::string dir;
+  std::string color = "speed";  // speed | pressure | phi | shear_rate | id
+  std::string view = "front";   // front | side | top | iso (3D)
+  std::string frames = "all";   // all | last | a frame number
+  std::string out_dir;          // default DIR/images
+  int width = 800;
+  int height = 0;  // 0: from the domain's aspect ratio
+  bool gif = false, mp4 = false;
+};
+
+// `sablier plot DIR`: a PNG of the run's stats.csv.
+struct PlotCommandOptions {
+  std::string dir;
+  std::string out;  // default DIR/stats.png
+  int width = 800, height = 900;
+};
+
 // Runs a scene; returns the process exit code.
 int run_command(const RunOptions& options);
 // Validates a scene and prints a summary; returns the exit code.
 int check_command(const std::string& scene_path, const std::vector<std::string>& overrides);
+// Draw pictures of a run; return the exit code (2 for bad input).
+int render_command(const RenderCommandOptions& options);
+int plot_command(const PlotCommandOptions& options);
 // Prints version, build and OpenMP information.
 int info_command();
 

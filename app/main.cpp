@@ -26,6 +26,25 @@ int main(int argc, char** argv) {
   check_cmd->add_option("scene", check_path, "Scene file (TOML)")->required();
   check_cmd->add_option("--set", check_overrides, "Override a scene key");
 
+  sablier::RenderCommandOptions render;
+  CLI::App* render_cmd = app.add_subcommand("render", "Draw a run's frames as PNG pictures");
+  render_cmd->add_option("dir", render.dir, "Output folder of a run")->required();
+  render_cmd->add_option("--color", render.color, "speed | pressure | phi | shear_rate | id");
+  render_cmd->add_option("--view", render.view, "3D view: front | side | top | iso");
+  render_cmd->add_option("--width", render.width, "Picture width in pixels (default 800)");
+  render_cmd->add_option("--height", render.height, "Picture height (default: fits the domain)");
+  render_cmd->add_option("--frames", render.frames, "all | last | a frame number");
+  render_cmd->add_option("--out,-o", render.out_dir, "Picture folder (default DIR/images)");
+  render_cmd->add_flag("--gif", render.gif, "Also write animation.gif (needs ImageMagick)");
+  render_cmd->add_flag("--mp4", render.mp4, "Also write animation.mp4 (needs ffmpeg)");
+
+  sablier::PlotCommandOptions plot;
+  CLI::App* plot_cmd = app.add_subcommand("plot", "Plot a run's stats.csv as a PNG");
+  plot_cmd->add_option("dir", plot.dir, "Output folder of a run")->required();
+  plot_cmd->add_option("--out,-o", plot.out, "PNG file (default DIR/stats.png)");
+  plot_cmd->add_option("--width", plot.width, "Picture width in pixels (default 800)");
+  plot_cmd->add_option("--height", plot.height, "Picture height in pixels (default 900)");
+
   CLI::App* info_cmd = app.add_subcommand("info", "Version, build and OpenMP information");
 
   CLI11_PARSE(app, argc, argv);
@@ -46,6 +65,8 @@ int main(int argc, char** argv) {
     return sablier::run_command(run);
   }
   if (*check_cmd) return sablier::check_command(check_path, check_overrides);
+  if (*render_cmd) return sablier::render_command(render);
+  if (*plot_cmd) return sablier::plot_command(plot);
   if (*info_cmd) return sablier::info_command();
   return 2;
 }

@@ -1,0 +1,359 @@
+// Pictures of runs: PNG encoding round-trips through libpng's own decoder,
+// particles land where the camera says in the colour the map gives, 3D
+// frames show the box, and `sablier render` / `sablier plot` write
+// decodable pictures or fail with one line and exit code 2.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "io/image.hpp"
+#include "io/plot.hpp"
+#include "io/render.hpp"
+#include "io/writers.hpp"
+
+namespace sablier {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Decoded {
+  bool ok = false;
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  Rgb at(int x, int y) const {
+    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+// libpng's simplified reader: independent of the encoder's code path.
+Decoded decode_png(const std::string& bytes) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  Decoded d;
+  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) return d;
+  image.format = PNG_FORMAT_RGB;
+  d.rgb.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, d.rgb.data(), 0, nullptr)) {
+    png_image_free(&image);
+    return d;
+  }
+  d.ok = true;
+  d.width = static_cast<int>(image.width);
+  d.height = static_cast<int>(image.height);
+  return d;
+}
+
+Decoded decode_file(const fs::path& path) { return decode_png(read_file(path.string())); }
+
+TEST(Render, PngRoundTripsThroughLibpng) {
+  Canvas c(7, 5, {10, 20, 30});
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 7; ++x)
+      c.set(x, y, {static_cast<std::uint8_t>(x * 36), static_cast<std::uint8_t>(y * 60), 200});
+  const std::string png = encode_png(c);
+  ASSERT_EQ(png.compare(1, 3, "PNG"), 0);
+  const Decoded d = decode_png(png);
+  ASSERT_TRUE(d.ok);
+  ASSERT_EQ(d.width, 7);
+  ASSERT_EQ(d.height, 5);
+  EXPECT_EQ(d.rgb, c.pixels());
+}
+
+TEST(Render, ViridisMatchesMatplotlib) {
+  // Entries 0, 128 and 255 of matplotlib's table as 8-bit colours.
+  EXPECT_EQ(viridis(0.0), (Rgb{68, 1, 84}));
+  EXPECT_EQ(viridis(128.0 / 255.0), (Rgb{33, 145, 140}));
+  EXPECT_EQ(viridis(1.0), (Rgb{253, 231, 37}));
+  EXPECT_EQ(viridis(-3.0), viridis(0.0));
+  EXPECT_EQ(viridis(7.0), viridis(1.0));
+  EXPECT_EQ(viridis(std::nan("")), viridis(0.0));
+}
+
+TEST(Render, NumberLabelsAreShort) {
+  EXPECT_EQ(format_number(0.0), "0");
+  EXPECT_EQ(format_number(1000.0), "1000");
+  EXPECT_EQ(format_number(0.25), "0.25");
+  EXPECT_EQ(format_number(2.0123e-4), "2.01e-4");
+  EXPECT_EQ(format_number(1.5e6), "1.5e6");
+  EXPECT_EQ(text_width("t = 0.500 s", 1), 11 * 6 - 1);
+}
+
+TEST(Render, RangesStartFromZeroForMagnitudes) {
+  ParticleFrame f;
+  f.dimension = 2, f.count = 2;
+  f.position = {0.1, 0.1, 0.2, 0.2};
+  f.velocity = {3.0, 4.0, 1.0, 0.0};
+  f.pressure = {100.0, 50.0};
+  f.phi = {0.5, 0.6};
+  Range speed = empty_range();
+  extend_range(f, ColorBy::speed, &speed);
+  speed = finish_range(speed, ColorBy::speed);
+  EXPECT_EQ(speed.lo, 0.0);
+  EXPECT_EQ(speed.hi, 5.0);
+  Range pressure = empty_range();
+  extend_range(f, ColorBy::pressure, &pressure);
+  EXPECT_EQ(finish_range(pressure, ColorBy::pressure).lo, 0.0);
+  Range phi = empty_range();
+  extend_range(f, ColorBy::phi, &phi);
+  phi = finish_range(phi, ColorBy::phi);
+  EXPECT_DOUBLE_EQ(phi.lo, 0.5);
+  EXPECT_DOUBLE_EQ(phi.hi, 0.6);
+  // A bed at rest: one value maps without dividing by zero.
+  const Range rest = finish_range({0.0, 0.0}, ColorBy::speed);
+  EXPECT_LT(rest.lo, rest.hi);
+  EXPECT_THROW(extend_range(f, ColorBy::shear_rate, &phi), IoError);  // no such values
+}
+
+// A 2D frame of three well-separated particles, speeds 0, 1 and 2.
+ParticleFrame three_particles() {
+  ParticleFrame f;
+  f.dimension = 2, f.count = 3, f.time = 0.5;
+  f.position = {0.2, 0.1, 0.5, 0.25, 0.8, 0.4};
+  f.velocity = {0.0, 0.0, 1.0, 0.0, 0.0, -2.0};
+  f.volume.assign(3, 3.14159e-4);  // radius 1 cm
+  f.pressure.assign(3, 0.0);
+  f.phi.assign(3, 0.6);
+  return f;
+}
+
+Box unit_box(int d, double x, double y, double z = 0.0) {
+  Box b;
+  b.dimension = d;
+  b.hi[0] = x, b.hi[1] = y, b.hi[2] = z;
+  return b;
+}
+
+TEST(Render, TwoDParticlesHaveTheirMapColour) {
+  const ParticleFrame f = three_particles();
+  const Box box = unit_box(2, 1.0, 0.5);
+  const Range range{0.0, 2.0};
+  RenderOptions opt;
+  opt.width = 400, opt.height = 240;
+  const Canvas c = render_frame(f, box, range, opt);
+  ASSERT_EQ(c.width(), 400);
+  ASSERT_EQ(c.height(), 240);
+  const Camera cam(box, opt.view, opt.width, opt.height);
+  EXPECT_GT(0.01 * cam.pixels_per_metre(), 2.0);  // discs several pixels wide
+  for (std::size_t p = 0; p < f.count; ++p) {
+    const Camera::Point q = cam.project(&f.position[2 * p]);
+    const double speed = std::hypot(f.velocity[2 * p], f.velocity[2 * p + 1]);
+    EXPECT_EQ(c.at(static_cast<int>(q.x), static_cast<int>(q.y)), viridis(speed / 2.0))
+        << "particle " << p;
+  }
+  // Between the particles: background; the floor: the box outline.
+  const double empty[2] = {0.35, 0.4}, floor[2] = {0.5, 0.0};
+  const Camera::Point e = cam.project(empty), w = cam.project(floor);
+  EXPECT_EQ(c.at(static_cast<int>(e.x), static_cast<int>(e.y)), kBackground);
+  EXPECT_EQ(c.at(static_cast<int>(w.x), static_cast<int>(w.y)), kInk);
+  // The box keeps its aspect ratio (2:1).
+  const Camera::Rect& r = cam.content();
+  EXPECT_NEAR((r.x1 - r.x0) / (r.y1 - r.y0), 2.0, 0.02);
+}
+
+ParticleFrame small_3d_block() {
+  ParticleFrame f;
+  f.dimension = 3, f.count = 8, f.time = 0.25;
+  for (int k = 0; k < 8; ++k) {
+    f.position.push_back(0.4 + 0.05 * (k & 1));
+    f.position.push_back(0.04 + 0.02 * ((k >> 1) & 1));
+    f.position.push_back(0.05 + 0.05 * ((k >> 2) & 1));
+    for (int a = 0; a < 3; ++a) f.velocity.push_back(a == 2 ? -0.1 * k : 0.0);
+  }
+  f.volume.assign(8, 4.19e-6);  // radius 1 cm
+  f.pressure.assign(8, 1.0);
+  f.phi.assign(8, 0.6);
+  f.shear_rate.assign(8, 0.0);
+  f.id = {0, 1, 2, 3, 4, 5, 6, 7};
+  return f;
+}
+
+bool ink_near(const Canvas& c, const Camera::Point& p) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (c.at(static_cast<int>(p.x) + dx, static_cast<int>(p.y) + dy) == kInk) return true;
+  return false;
+}
+
+TEST(Render, ThreeDFramesShowTheBoxAndShadedGrains) {
+  const ParticleFrame f = small_3d_block();
+  const Box box = unit_box(3, 1.0, 0.1, 0.25);
+  for (View view : {View::front, View::side, View::top, View::iso}) {
+    RenderOptions opt;
+    opt.view = view, opt.color = ColorBy::id, opt.width = 500;
+    opt.height = auto_height(box, view, opt.width);
+    const Canvas c = render_frame(f, box, {0.0, 7.0}, opt);
+    const Camera cam(box, view, opt.width, opt.height);
+    // Every corner of the box is on a drawn edge (no grain hides them here).
+    for (int corner = 0; corner < 8; ++corner) {
+      const double p[3] = {corner & 1 ? 1.0 : 0.0, corner & 2 ? 0.1 : 0.0, corner & 4 ? 0.25 : 0.0};
+      EXPECT_TRUE(ink_near(c, cam.project(p))) << "view " << int(view) << " corner " << corner;
+    }
+    // The grains are drawn, shaded: not background at the first grain's centre.
+    const Camera::Point g = cam.project(&f.position[0]);
+    EXPECT_NE(c.at(static_cast<int>(g.x), static_cast<int>(g.y)), kBackground);
+  }
+}
+
+// ---- the command line ----
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+fs::path temp(const std::string& name) {
+  return fs::temp_directory_path() / ("sablier_render_" + std::to_string(::getpid()) + "_" + name);
+}
+
+Result shell(const std::string& command) {
+  const fs::path log = temp("log.txt");
+  const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
+  Result r{WEXITSTATUS(status), read_file(log.string())};
+  fs::remove(log);
+  return r;
+}
+
+Result sablier(const std::string& args) { return shell(std::string(SABLIER_BINARY) + " " + args); }
+
+// A finished 2-frame run of the bed scene (frames 0, 1, 2).
+fs::path tiny_run(const std::string& name) {
+  const fs::path dir = temp(name);
+  fs::remove_all(dir);
+  const Result r = sablier("run " + std::string(SABLIER_SOURCE_DIR) + "/scenes/bed2d.toml --out " +
+                           dir.string() + " --set time.frames=2 --quiet");
+  EXPECT_EQ(r.code, 0) << r.output;
+  return dir;
+}
+
+// One line, starting with "error:", that mentions `what`.
+void expect_one_line_error(const Result& r, const std::string& what) {
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.output.rfind("error: ", 0), 0u) << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << r.output;
+  EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
+}
+
+TEST(RenderCli, WritesOnePictureAFrameAtTheRequestedSize) {
+  const fs::path dir = tiny_run("frames");
+  const Result r = sablier("render " + dir.string() + " --width 320 --height 200");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* name : {"frame_00000.png", "frame_00001.png", "frame_00002.png"}) {
+    const Decoded d = decode_file(dir / "images" / name);
+    ASSERT_TRUE(d.ok) << name;
+    EXPECT_EQ(d.width, 320) << name;
+    EXPECT_EQ(d.height, 200) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "images" / "frame_00003.png"));
+  // --frames last, another folder, another attribute, default size.
+  const fs::path out = temp("frames_last");
+  fs::remove_all(out);
+  const Result last =
+      sablier("render " + dir.string() + " --frames last --color pressure --out " + out.string());
+  ASSERT_EQ(last.code, 0) << last.output;
+  EXPECT_FALSE(fs::exists(out / "frame_00001.png"));
+  const Decoded d = decode_file(out / "frame_00002.png");
+  ASSERT_TRUE(d.ok);
+  EXPECT_EQ(d.width, 800);
+  EXPECT_GT(d.height, 100);
+  fs::remove_all(out);
+  fs::remove_all(dir);
+}
+
+TEST(RenderCli, FindsFramesWithoutTheSeriesFile) {
+  const fs::path dir = tiny_run("noseries");
+  fs::remove(dir / "series.pvd");
+  fs::remove(dir / "scene.toml");  // the box then comes from the particles
+  const Result r = sablier("render " + dir.string() + " --frames 1 --width 200");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(decode_file(dir / "images" / "frame_00001.png").ok);
+  EXPECT_FALSE(fs::exists(dir / "images" / "frame_00000.png"));
+  fs::remove_all(dir);
+}
+
+TEST(RenderCli, PlotWritesADecodablePicture) {
+  const fs::path dir = tiny_run("plot");
+  const Result r = sablier("plot " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const Decoded d = decode_file(dir / "stats.png");
+  ASSERT_TRUE(d.ok);
+  EXPECT_EQ(d.width, 800);
+  EXPECT_EQ(d.height, 900);
+  const fs::path out = temp("plot_out.png");
+  ASSERT_EQ(sablier("plot " + dir.string() + " --out " + out.string()).code, 0);
+  EXPECT_TRUE(decode_file(out).ok);
+  fs::remove(out);
+  fs::remove_all(dir);
+}
+
+TEST(RenderCli, BadInputsExitTwoWithOneLine) {
+  const fs::path missing = temp("missing");
+  fs::remove_all(missing);
+  expect_one_line_error(sablier("render " + missing.string()), "no folder");
+  expect_one_line_error(sablier("plot " + missing.string()), "no folder");
+  const fs::path empty = temp("empty");
+  fs::create_directories(empty);
+  expect_one_line_error(sablier("render " + empty.string()), "no frames");
+  expect_one_line_error(sablier("plot " + empty.string()), "stats.csv");
+  fs::remove_all(empty);
+
+  const fs::path dir = tiny_run("bad");
+  expect_one_line_error(sablier("render " + dir.string() + " --color temperature"),
+                        "unknown attribute \"temperature\"");
+  expect_one_line_error(sablier("render " + dir.string() + " --view under"), "unknown view");
+  expect_one_line_error(sablier("render " + dir.string() + " --frames 7"), "no frame 7");
+  expect_one_line_error(sablier("render " + dir.string() + " --frames first"), "--frames");
+  expect_one_line_error(sablier("render " + dir.string() + " --width 3"), "--width");
+  std::ofstream(dir / "stats.csv") << "step,time\n1,0.1\n";
+  expect_one_line_error(sablier("plot " + dir.string()), "no column \"kinetic_energy\"");
+  EXPECT_FALSE(fs::exists(dir / "images"));  // nothing written on bad input
+  fs::remove_all(dir);
+}
+
+TEST(RenderCli, AnimationsNeedTheirToolAndSaySoWhenMissing) {
+  const fs::path dir = tiny_run("anim");
+  // With no PATH, neither ImageMagick nor ffmpeg can be found.
+  const std::string bin = std::string("PATH=/nonexistent ") + SABLIER_BINARY;
+  expect_one_line_error(shell(bin + " render " + dir.string() + " --gif"),
+                        "apt-get install imagemagick");
+  expect_one_line_error(shell(bin + " render " + dir.string() + " --mp4"),
+                        "apt-get install ffmpeg");
+  EXPECT_FALSE(fs::exists(dir / "images"));
+  fs::remove_all(dir);
+}
+
+// Stand-ins for convert and ffmpeg that answer -version and write their
+// arguments to the output file (their last argument): the commands the
+// renderer builds must get through the shell intact.
+TEST(RenderCli, AnimationsCallTheirToolWithTheFrames) {
+  const fs::path dir = tiny_run("anim_tools");
+  const fs::path bin = temp("fake_bin");
+  fs::create_directories(bin);
+  for (const char* tool : {"convert", "ffmpeg"}) {
+    std::ofstream(bin / tool) << "#!/bin/sh\n[ \"$1\" = -version ] && exit 0\n"
+                                 "for last; do :; done\necho \"$@\" > \"$last\"\n";
+    fs::permissions(bin / tool, fs::perms::owner_all);
+  }
+  const Result r = shell("PATH=" + bin.string() + ":/usr/bin:/bin " + SABLIER_BINARY + " render " +
+                         dir.string() + " --width 64 --height 48 --gif --mp4");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string gif = read_file((dir / "images" / "animation.gif").string());
+  EXPECT_NE(gif.find("-loop 0"), std::string::npos) << gif;
+  EXPECT_NE(gif.find("frame_00000.png"), std::string::npos) << gif;
+  EXPECT_NE(gif.find("frame_00002.png"), std::string::npos) << gif;
+  const std::string mp4 = read_file((dir / "images" / "animation.mp4").string());
+  EXPECT_NE(mp4.find("-framerate 30 -start_number 0"), std::string::npos) << mp4;
+  EXPECT_NE(mp4.find("frame_%05d.png -frames:v 3"), std::string::npos) << mp4;
+  EXPECT_NE(mp4.find("pad=ceil(iw/2)*2:ceil(ih/2)*2"), std::string::npos) << mp4;
+  fs::remove_all(bin);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sablier
