@@ -4,6 +4,8 @@
 // Mohr-Coulomb limit of an inclined layer, and the laboratory trend of the
 // column collapse.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <omp.h>
 
 #include <cmath>
@@ -190,7 +192,8 @@ TEST(Physics, TiltedLayerFlowsAboveMohrCoulombLimit) {
 // with the aspect ratio a = H0 / L0 (Lajeunesse, Mangeney-Castelnau & Vilotte
 // 2004; Lube et al. 2005: (L_inf - L0) / L0 grows roughly linearly for a < 3).
 // "Stopped" at 1.5 s: the kinetic energy is below 1e-3 of its peak and the
-// front has moved less than a tenth of a cell over the last 0.3 s.
+// front (99th percentile of x) has moved less than a tenth of a cell over
+// the last 0.3 s.
 TEST(Physics, CollapseRunOutGrowsWithAspectRatio) {
   const double h0 = 0.1;
   double previous = 0.0;
@@ -199,10 +202,16 @@ TEST(Physics, CollapseRunOutGrowsWithAspectRatio) {
     SceneConfig s = scene("collapse2d.toml", {"grid.resolution=[100,25]",
                                               "sand.0.max=[" + std::to_string(l0) + "," + std::to_string(h0) + "]"});
     Simulation<2> sim(s);
+    // The front is the 99th percentile of the grains' x, not the farthest
+    // grain: a lone grain ahead of the deposit slides on a layer one particle
+    // thick and its position is not converged in the solver tolerance
+    // (measured, a = 2: plain Gauss-Seidel at 1e-6 moves it 6 mm in the
+    // last 0.3 s while the 99th percentile moves 0.8 mm).
     const auto front = [&] {
-      double f = 0.0;
-      for (const Vec<2>& x : sim.particles().position) f = std::max(f, x[0]);
-      return f;
+      std::vector<double> xs;
+      for (const Vec<2>& x : sim.particles().position) xs.push_back(x[0]);
+      std::sort(xs.begin(), xs.end());
+      return xs[static_cast<std::size_t>(0.99 * (xs.size() - 1))];
     };
     double peak = 0.0;
     for (int f = 1; f <= 36; ++f) {

@@ -55,7 +55,7 @@ TEST(SceneFile, EveryKey2D) {
   e.resolution = {80, 40, 1};
   e.time = TimeConfig{60, 12, 4, 0.5};
   e.material = MaterialConfig{1500, 0.38, 0.62, 0.01, 20.0, 3.0, MuIConfig{0.3, 0.3, 2e-3}};
-  e.solver = SolverConfig{1e-6, 300};
+  e.solver = SolverConfig{1e-6, 300, 3};
   e.boundary.faces = {B::Stick, B::Slip, B::Stick, B::Free, B::Slip, B::Slip};
   e.boundary.openings = {Opening{YMin, v(0.9, 0), v(1.1, 0)}};
   e.sand = {SandConfig{SandShape::Cylinder, {}, {}, v(0.5, 0.5), 0.25, 0, 3, 0.5, v(1, -0.5)},

@@ -137,6 +137,8 @@ std::vector<BadScene> time_material_solver_errors() {
        "bad.toml:10: solver.max_iterations", "max_iterations >= 1"},
       {"frames too large", with("[time]\nframes = 3000000000\n"),
        "bad.toml:10: time.frames: 3000000000 is too large", "frames <= 2147483647"},
+      {"anderson too deep", with("[solver]\nanderson = 17\n"), "bad.toml:10: solver.anderson",
+       "0 <= anderson <= 16"},
       {"iterations float", with("[solver]\nmax_iterations = 1e3\n"),
        "bad.toml:10: solver.max_iterations: expected an integer", ""},
   };

@@ -142,7 +142,8 @@ StepInfo Simulation<D>::step(double dt) {
   info.timings.assembly = seconds_since(t0);
 
   t0 = Clock::now();
-  info.solve = solve_gauss_seidel(problem_, scene_.solver.tolerance, scene_.solver.max_iterations);
+  info.solve = solve_gauss_seidel(problem_, scene_.solver.tolerance, scene_.solver.max_iterations,
+                                  scene_.solver.anderson);
   info.timings.solve = seconds_since(t0);
   // Work of the decompaction term: -2 dt sum_j lambda_N k_j over k_j < 0.
   for (int j = 0; j < problem_.rows(); ++j)

@@ -59,6 +59,7 @@ struct MaterialConfig {
 struct SolverConfig {
   double tolerance = 1e-5;  // relative velocity change of the last sweep (docs/method.md)
   int max_iterations = 2000;
+  int anderson = 5;  // Anderson acceleration depth; 0 = plain Gauss-Seidel
 };
 
 struct TimeConfig {

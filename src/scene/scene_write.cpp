@@ -50,8 +50,8 @@ std::string scene_to_toml(const SceneConfig& s) {
   if (m.mu_i)
     out += fmt::format("mu_i = {{ delta_mu = {}, I0 = {}, grain_diameter = {} }}\n",
                        num(m.mu_i->delta_mu), num(m.mu_i->I0), num(m.mu_i->grain_diameter));
-  out += fmt::format("\n[solver]\ntolerance = {}\nmax_iterations = {}\n\n[boundary]\n",
-                     num(s.solver.tolerance), s.solver.max_iterations);
+  out += fmt::format("\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\n\n[boundary]\n",
+                     num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson);
   for (int f = 0; f < 2 * d; ++f)
     out += fmt::format("{} = \"{}\"\n", faces[f], boundary_name(s.boundary.faces[f]));
   for (const Opening& o : s.boundary.openings)

@@ -1,6 +1,9 @@
 #include "solver/cone_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include <Eigen/Dense>
 
 namespace sablier {
 
@@ -72,24 +75,140 @@ inline void update_row(ConeProblem<D>& p, int j) {
   p.lambda[j] += dl;
 }
 
-// Sum of f(j) over rows in fixed blocks, then the block sums in order: the
-// same floating-point result for any thread count.
+// K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the
+// block sums in order: the same floating-point result for any thread count.
+// f(i, acc) adds its K terms to acc[0..K).
 template <class F>
-double deterministic_sum(std::int64_t n, const F& f) {
+void deterministic_sums(std::int64_t n, int K, std::vector<double>& out, const F& f) {
   constexpr std::int64_t kBlock = 1024;
   const std::int64_t nb = (n + kBlock - 1) / kBlock;
-  std::vector<double> partial(nb, 0.0);
+  std::vector<double> partial(nb * K, 0.0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < nb; ++b) {
-    double s = 0.0;
+    double* acc = partial.data() + b * K;
     const std::int64_t end = std::min(n, (b + 1) * kBlock);
-    for (std::int64_t j = b * kBlock; j < end; ++j) s += f(j);
-    partial[b] = s;
+    for (std::int64_t i = b * kBlock; i < end; ++i) f(i, acc);
   }
-  double total = 0.0;
-  for (double s : partial) total += s;
-  return total;
+  out.assign(K, 0.0);
+  for (std::int64_t b = 0; b < nb; ++b)
+    for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
 }
+
+// Anderson acceleration (Walker & Ni 2011, "type II") of the Gauss-Seidel
+// map G: lambda -> lambda after one sweep. After the sweep from x_k the rows
+// hold G(x_k) and the velocities u(G(x_k)); the residual is the velocity
+// change of the sweep, f_k = u(G(x_k)) - u(x_k). With the differences of the
+// last m residuals dF and sweep outputs dG, gamma minimises
+// |f_k - dF gamma|_M (kinetic-energy norm) and the next iterate is
+// x_{k+1} = G(x_k) - dG gamma. Velocities are affine in lambda
+// (u = u_f + M^{-1} H^T lambda), so u(x_{k+1}) is the same combination of the
+// stored velocities and stays consistent without a rescatter. x_{k+1} may
+// leave the cones; the next sweep maps every row back into its cone, and the
+// solver only stops after a plain sweep, so its answer is always feasible.
+// The history restarts when the residual grows (the accelerated iterate was
+// worse than a plain sweep) or the least-squares system is singular.
+// Velocity vectors are stored compactly over the free nodes `free[q]`.
+template <int D>
+class AndersonMixer {
+ public:
+  static constexpr int kMaxDepth = 16;
+
+  AndersonMixer(int depth, int rows, std::int64_t nfree) : m_(std::min(depth, kMaxDepth)) {
+    if (m_ <= 0) return;
+    dF_.assign(m_, std::vector<Vec<D>>(nfree, Vec<D>::Zero()));
+    dGu_.assign(m_, std::vector<Vec<D>>(nfree, Vec<D>::Zero()));
+    dGl_.assign(m_, std::vector<SymVec<D>>(rows, SymVec<D>::Zero()));
+    f_prev_.assign(nfree, Vec<D>::Zero());
+    gu_prev_.assign(nfree, Vec<D>::Zero());
+    gl_prev_.assign(rows, SymVec<D>::Zero());
+  }
+
+  // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
+  // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2.
+  void mix(ConeProblem<D>& p, const std::vector<std::int64_t>& free,
+           const std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2) {
+    if (m_ <= 0) return;
+    const std::int64_t nf = static_cast<std::int64_t>(free.size());
+    const int rows = p.rows();
+    if (have_prev_ && fnorm2 > kGrowth * kGrowth * fnorm2_prev_) count_ = 0;  // restart
+    const bool record = have_prev_ && fnorm2 <= kGrowth * kGrowth * fnorm2_prev_;
+    have_prev_ = true;
+    fnorm2_prev_ = fnorm2;
+    const int slot = next_ % m_;
+    if (record) {
+      ++next_;
+      count_ = std::min(count_ + 1, m_);
+    }
+    const int k = count_;
+    int idx[kMaxDepth];
+    for (int a = 0; a < k; ++a) idx[a] = ((next_ - 1 - a) % m_ + m_) % m_;
+    // One pass over the free nodes: store the new differences and this
+    // sweep's f and u(G), and accumulate the Gram matrix
+    // A_ab = <dF_a, dF_b>_M and r_a = <dF_a, f>_M.
+    const int K = k * (k + 1) / 2 + k;
+    std::vector<double> sums;
+    deterministic_sums(nf, K, sums, [&](std::int64_t q, double* acc) {
+      const Vec<D>& u = p.velocity[free[q]];
+      const Vec<D> f = u - u_before[q];
+      if (record) {
+        dF_[slot][q] = f - f_prev_[q];
+        dGu_[slot][q] = u - gu_prev_[q];
+      }
+      f_prev_[q] = f;
+      gu_prev_[q] = u;
+      int c = 0;
+      for (int a = 0; a < k; ++a) {
+        const Vec<D> wa = w[q].cwiseProduct(dF_[idx[a]][q]);
+        acc[c++] += wa.dot(f);
+        for (int b = 0; b <= a; ++b) acc[c++] += wa.dot(dF_[idx[b]][q]);
+      }
+    });
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < rows; ++j) {
+      if (record) dGl_[slot][j] = p.lambda[j] - gl_prev_[j];
+      gl_prev_[j] = p.lambda[j];
+    }
+    if (k == 0) return;
+    Eigen::MatrixXd A(k, k);
+    Eigen::VectorXd r(k);
+    int c = 0;
+    for (int a = 0; a < k; ++a) {
+      r[a] = sums[c++];
+      for (int b = 0; b <= a; ++b) A(a, b) = A(b, a) = sums[c++];
+    }
+    const double scale = A.diagonal().maxCoeff();
+    if (!(scale > 0.0)) {
+      count_ = 0;
+      return;
+    }
+    A.diagonal().array() += kRegularisation * scale;
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
+    const Eigen::VectorXd gamma = ldlt.solve(r);
+    if (ldlt.info() != Eigen::Success || !gamma.allFinite()) {
+      count_ = 0;
+      return;
+    }
+#pragma omp parallel for schedule(static)
+    for (std::int64_t q = 0; q < nf; ++q) {
+      Vec<D>& u = p.velocity[free[q]];
+      for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
+    }
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < rows; ++j)
+      for (int a = 0; a < k; ++a) p.lambda[j] -= gamma[a] * dGl_[idx[a]][j];
+  }
+
+ private:
+  static constexpr double kGrowth = 2.0;            // restart when |f| more than doubles
+  static constexpr double kRegularisation = 1e-10;  // relative Tikhonov shift of A
+  int m_ = 0, next_ = 0, count_ = 0;
+  bool have_prev_ = false;
+  double fnorm2_prev_ = 0.0;
+  std::vector<std::vector<Vec<D>>> dF_, dGu_;
+  std::vector<std::vector<SymVec<D>>> dGl_;
+  std::vector<Vec<D>> f_prev_, gu_prev_;
+  std::vector<SymVec<D>> gl_prev_;
+};
 
 }  // namespace
 
@@ -130,36 +249,47 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
 }
 
 template <int D>
-SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations) {
+SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
+                               int anderson_depth) {
   SolveReport report;
   const int n = p.rows();
   if (n == 0) return report;
   const int ncol = static_cast<int>(p.colour_start.size()) - 1;
   const std::int64_t nv = static_cast<std::int64_t>(p.velocity.size());
-  // Velocities before any stress acts (u_f) and before the current sweep.
-  const std::vector<Vec<D>> u_free = p.velocity;
-  std::vector<Vec<D>> u_prev;
+  // The free velocity nodes (some component with inv_mass > 0): the only ones
+  // stresses move. Their kinetic-energy weights w = 1 / inv_mass per free
+  // component (0 on constrained ones) define |a|_M^2 = sum_q a_q . w_q a_q.
+  std::vector<std::int64_t> free;
+  for (std::int64_t i = 0; i < nv; ++i)
+    if (p.inv_mass[i].maxCoeff() > 0.0) free.push_back(i);
+  const std::int64_t nf = static_cast<std::int64_t>(free.size());
+  std::vector<Vec<D>> weight(nf), u_free(nf), u_prev(nf);
+  for (std::int64_t q = 0; q < nf; ++q) {
+    const std::int64_t i = free[q];
+    for (int c = 0; c < D; ++c) weight[q][c] = p.inv_mass[i][c] > 0.0 ? 1.0 / p.inv_mass[i][c] : 0.0;
+    u_free[q] = p.velocity[i];  // before any stress acts
+  }
   apply_stress_to_velocity(p);  // warm start
-  // |a|_M^2 = sum over free components of a^2 / inv_mass (kinetic-energy norm).
-  const auto mass_norm2 = [&](const Vec<D>& a, std::int64_t i) {
-    double s = 0.0;
-    for (int c = 0; c < D; ++c)
-      if (p.inv_mass[i][c] > 0.0) s += a[c] * a[c] / p.inv_mass[i][c];
-    return s;
-  };
+  AndersonMixer<D> mixer(anderson_depth, n, nf);
+  std::vector<double> sums;
   for (int it = 1; it <= max_iterations; ++it) {
-    u_prev = p.velocity;
+#pragma omp parallel for schedule(static)
+    for (std::int64_t q = 0; q < nf; ++q) u_prev[q] = p.velocity[free[q]];
     for (int c = 0; c < ncol; ++c) {
 #pragma omp parallel for schedule(static)
       for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) update_row<D>(p, j);
     }
-    const double change = deterministic_sum(
-        nv, [&](std::int64_t i) { return mass_norm2(p.velocity[i] - u_prev[i], i); });
-    const double correction = deterministic_sum(
-        nv, [&](std::int64_t i) { return mass_norm2(p.velocity[i] - u_free[i], i); });
+    // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
+    deterministic_sums(nf, 2, sums, [&](std::int64_t q, double* acc) {
+      const Vec<D>& u = p.velocity[free[q]];
+      const Vec<D> a = u - u_prev[q], b = u - u_free[q];
+      acc[0] += a.dot(weight[q].cwiseProduct(a));
+      acc[1] += b.dot(weight[q].cwiseProduct(b));
+    });
     report.iterations = it;
-    report.residual = correction > 0.0 ? std::sqrt(change / correction) : 0.0;
+    report.residual = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
     if (report.residual <= tolerance) break;
+    if (it < max_iterations) mixer.mix(p, free, u_prev, weight, sums[0]);
   }
   report.hit_cap = report.residual > tolerance;
   for (int j = 0; j < n; ++j) {
@@ -183,7 +313,7 @@ SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j) {
   template struct ConeProblem<D>;                                                       \
   template void assemble_delassus<D>(ConeProblem<D>&);                                  \
   template void apply_stress_to_velocity<D>(ConeProblem<D>&);                           \
-  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int);             \
+  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int);           \
   template SymVec<D> row_strain_rate<D>(const ConeProblem<D>&, int);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)

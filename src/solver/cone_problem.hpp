@@ -86,8 +86,12 @@ void apply_stress_to_velocity(ConeProblem<D>& p);
 // components per node against d velocities, so the stress field is not
 // unique; those components never move a grain). Stops when r <= tolerance or
 // after max_iterations sweeps. Bit-identical whatever the thread count.
+// With anderson_depth m > 0 the sweeps are accelerated by Anderson mixing of
+// the last m sweeps (cone_problem.cpp, AndersonMixer); m = 0 is plain
+// Gauss-Seidel.
 template <int D>
-SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations);
+SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
+                               int anderson_depth = 0);
 
 // gamma_j (1/s) from the current velocities, for diagnostics and tests.
 template <int D>
