@@ -14,7 +14,18 @@ struct RunOptions {
   int threads = 0;  // 0 = OpenMP default
   bool quiet = false;
   bool overwrite = false;
+  // `run --resume DIR`: continue the run in DIR from its checkpoint (the
+  // scene, formats and folder are the run's own; only threads and quiet apply).
+  std::string resume_dir;
+  // For tests: after writing this frame, stop as an interrupt would (0: never).
+  int stop_after_frame = 0;
 };
+
+// The particle formats `--format` accepts.
+extern const char* const kParticleFormats[3];
+// Splits "vtp,csv" into its names; returns the first unknown one, or "" if
+// all are known.
+std::string parse_formats(const std::string& list, std::vector<std::string>& formats);
 
 // `sablier render DIR`: PNG pictures of a run's frames.
 struct RenderCommandOptions {

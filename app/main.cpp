@@ -11,14 +11,29 @@ int main(int argc, char** argv) {
   sablier::RunOptions run;
   std::string formats = "vtp";
   CLI::App* run_cmd = app.add_subcommand("run", "Run a scene and write its outputs");
-  run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)")->required();
-  run_cmd->add_option("--out,-o", run.out_dir, "Output folder")->required();
-  run_cmd->add_option("--set", run.overrides, "Override a scene key: --set material.mu=0.3");
-  run_cmd->add_option("--format", formats, "Particle formats, comma-separated: vtp,csv");
+  CLI::Option* scene_opt = run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)");
+  CLI::Option* out_opt = run_cmd->add_option("--out,-o", run.out_dir, "Output folder");
+  CLI::Option* set_opt =
+      run_cmd->add_option("--set", run.overrides, "Override a scene key: --set material.mu=0.3");
+  CLI::Option* format_opt =
+      run_cmd->add_option("--format", formats, "Particle formats, comma-separated: vtp,csv,ply");
   run_cmd->add_option("--threads", run.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   run_cmd->add_flag("--quiet,-q", run.quiet, "No progress output");
-  run_cmd->add_flag("--overwrite", run.overwrite, "Replace another run's outputs in the folder");
+  CLI::Option* overwrite_opt =
+      run_cmd->add_flag("--overwrite", run.overwrite, "Replace another run's outputs in the folder");
+  run_cmd
+      ->add_option("--resume", run.resume_dir,
+                   "Continue the interrupted run in this folder from its checkpoint")
+      ->excludes(scene_opt)
+      ->excludes(out_opt)
+      ->excludes(set_opt)
+      ->excludes(format_opt)
+      ->excludes(overwrite_opt);
+  // For tests of --resume: stop as an interrupt would, after writing frame N.
+  run_cmd->add_option("--stop-after-frame", run.stop_after_frame)
+      ->check(CLI::NonNegativeNumber)
+      ->group("");
 
   std::string check_path;
   std::vector<std::string> check_overrides;
@@ -49,18 +64,15 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (*run_cmd) {
-    run.formats.clear();
-    std::size_t start = 0;
-    while (start <= formats.size()) {
-      const std::size_t comma = formats.find(',', start);
-      const std::string f = formats.substr(start, comma == std::string::npos ? comma : comma - start);
-      if (f != "vtp" && f != "csv") {
-        std::fprintf(stderr, "error: --format: unknown format \"%s\"; allowed: vtp, csv\n", f.c_str());
-        return 2;
-      }
-      run.formats.push_back(f);
-      if (comma == std::string::npos) break;
-      start = comma + 1;
+    if (run.resume_dir.empty() && (run.scene_path.empty() || run.out_dir.empty())) {
+      std::fprintf(stderr, "error: run: give SCENE.toml and --out DIR, or --resume DIR\n");
+      return 2;
+    }
+    const std::string bad = sablier::parse_formats(formats, run.formats);
+    if (!bad.empty()) {
+      std::fprintf(stderr, "error: --format: unknown format \"%s\"; allowed: vtp, csv, ply\n",
+                   bad.c_str());
+      return 2;
     }
     return sablier::run_command(run);
   }

@@ -1,19 +1,43 @@
-// `sablier run`, `sablier check` and `sablier info`.
+// `sablier run`: a scene from its start, or (`--resume DIR`) from the
+// checkpoint of an interrupted run.
+#include <fmt/format.h>
 #include <omp.h>
 
-#include <chrono>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fmt/format.h>
+#include <iterator>
 
+#include "checkpoint_state.hpp"
 #include "commands.hpp"
+#include "io/hash.hpp"
 #include "io/stats_writer.hpp"
 #include "io/writers.hpp"
 #include "physics/simulation.hpp"
+#include "progress.hpp"
+#include "run_record.hpp"
 #include "scene/scene.hpp"
 
 namespace sablier {
+
+const char* const kParticleFormats[3] = {"vtp", "csv", "ply"};
+
+std::string parse_formats(const std::string& list, std::vector<std::string>& formats) {
+  formats.clear();
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = list.find(',', start);
+    const std::string f = list.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (std::find(std::begin(kParticleFormats), std::end(kParticleFormats), f) ==
+        std::end(kParticleFormats))
+      return f.empty() ? "(empty)" : f;
+    formats.push_back(f);
+    if (comma == std::string::npos) return "";
+    start = comma + 1;
+  }
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -22,7 +46,8 @@ void on_signal(int) { g_interrupted = 1; }
 
 // Files a run writes at the top of its folder: their presence means the
 // folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv", "series.pvd", "scene.toml"};
+const char* const kRunFiles[] = {"stats.csv", "series.pvd", "scene.toml", "run.json",
+                                 "checkpoint.bin"};
 
 bool holds_run_outputs(const fs::path& dir) {
   for (const char* f : kRunFiles)
@@ -39,37 +64,86 @@ std::string frame_name(int frame, const char* ext) {
   return fmt::format("frames/particles_{:05d}.{}", frame, ext);
 }
 
+// What a Runner needs besides the scene and the simulation.
+struct RunSettings {
+  fs::path dir;
+  std::vector<std::string> formats;
+  bool quiet = false;
+  int stop_after_frame = 0;
+  std::string scene_text;  // scene.toml as written
+};
+
 template <int D>
 class Runner {
  public:
-  Runner(const SceneConfig& scene, const RunOptions& opt)
-      : scene_(scene), opt_(opt), dir_(opt.out_dir), sim_(scene) {}
+  Runner(const SceneConfig& scene, RunSettings settings, Simulation<D> sim)
+      : scene_(scene), set_(std::move(settings)), sim_(std::move(sim)) {
+    record_.scene_text = set_.scene_text;
+    record_.scene_hash = fnv1a64(set_.scene_text);
+    record_.formats = set_.formats;
+    record_.threads = omp_get_max_threads();
+    record_.started = utc_now();
+    record_.frames = scene_.time.frames;
+  }
 
   int run() {
+    write_run_json("running");
     write_frame(0);
+    return advance(0, 0);
+  }
+
+  // Continues after the checkpoint's frame and substep, with the stats rows
+  // of the steps it covers.
+  int resume(const Checkpoint& c, std::vector<StepStats> rows) {
+    for (StepStats& s : rows) stats_.add(s);
+    frame_times_ = c.frame_times;
+    if (writes("vtp"))
+      for (std::size_t f = 0; f < frame_times_.size(); ++f)
+        series_.push_back({frame_times_[f], frame_name(static_cast<int>(f), "vtp")});
+    record_.resumed_from_step = c.steps;
+    record_.frames_written = c.frame + 1;
+    write_run_json("running");
+    return advance(c.frame, c.substep);
+  }
+
+ private:
+  // Runs from after frame `frame`, `sub` steps into the next one, to the
+  // last frame or an interrupt.
+  int advance(int frame, int sub) {
     const double frame_dt = 1.0 / scene_.time.fps;
-    const auto start = std::chrono::steady_clock::now();
-    for (int f = 1; f <= scene_.time.frames; ++f) {
+    Progress progress(set_.quiet, scene_.time.frames, scene_.time.frames * frame_dt, frame,
+                      sim_.time(), sim_.steps());
+    for (int f = frame + 1; f <= scene_.time.frames; ++f) {
       const double t_end = f * frame_dt;
-      int sub = 0;
       while (sim_.time() < t_end - 1e-9 * frame_dt) {
         const double remaining = t_end - sim_.time();
         const double dt = scene_.time.substeps > 0 ? remaining / (scene_.time.substeps - sub)
                                                    : sim_.adaptive_dt(remaining);
         ++sub;
-        record(sim_.step(dt));
-        if (g_interrupted) return interrupted(f - 1);
+        const StepInfo info = sim_.step(dt);
+        record(info);
+        progress.step(sim_.time(), sim_.steps(), info.solve.iterations, info.solve.hit_cap);
+        if (g_interrupted) return stop(progress, f - 1, sub);
       }
+      sub = 0;
       write_frame(f);
-      log_frame(f, start);
+      progress.frame(f, sim_.time(), sim_.steps());
+      if (f == set_.stop_after_frame && f < scene_.time.frames) return stop(progress, f, 0);
     }
-    if (!opt_.quiet)
+    write_run_json("finished");
+    progress.finish();
+    if (!set_.quiet)
       std::fprintf(stderr, "done: %d frames, %lld steps, outputs in %s\n", scene_.time.frames,
-                   static_cast<long long>(sim_.steps()), opt_.out_dir.c_str());
+                   static_cast<long long>(sim_.steps()), set_.dir.c_str());
     return 0;
   }
 
- private:
+  bool writes(const char* format) const {
+    for (const std::string& f : set_.formats)
+      if (f == format) return true;
+    return false;
+  }
+
   void record(const StepInfo& info) {
     StepStats s{};
     s.step = sim_.steps();
@@ -89,61 +163,104 @@ class Runner {
     s.solve_seconds = info.timings.solve;
     s.advection_seconds = info.timings.advection;
     stats_.add(s);
-    iterations_since_log_ += info.solve.iterations;
-    capped_since_log_ += info.solve.hit_cap ? 1 : 0;
   }
 
+  // The frame's files, then stats.csv, then the checkpoint: a run killed
+  // anywhere in between resumes from the previous checkpoint and rewrites
+  // the same files.
   void write_frame(int f) {
     const ParticleFrame frame = sim_.frame();
-    for (const std::string& fmt_name : opt_.formats) {
-      if (fmt_name == "vtp") {
-        write_file_atomic((dir_ / frame_name(f, "vtp")).string(), format_vtp(frame));
-        series_.push_back({frame.time, frame_name(f, "vtp")});
-      } else if (fmt_name == "csv") {
-        write_file_atomic((dir_ / frame_name(f, "csv")).string(), format_particle_csv(frame));
-      }
+    const std::string base = (set_.dir / "frames/particles_").string() + fmt::format("{:05d}.", f);
+    if (writes("vtp")) {
+      write_file_atomic(base + "vtp", format_vtp(frame));
+      series_.push_back({frame.time, frame_name(f, "vtp")});
+      write_file_atomic((set_.dir / "series.pvd").string(), format_pvd(series_));
     }
-    if (!series_.empty()) write_file_atomic((dir_ / "series.pvd").string(), format_pvd(series_));
-    write_file_atomic((dir_ / "stats.csv").string(), stats_.csv());
+    if (writes("csv")) write_file_atomic(base + "csv", format_particle_csv(frame));
+    if (writes("ply")) write_file_atomic(base + "ply", format_ply(frame));
+    frame_times_.push_back(frame.time);
+    write_file_atomic((set_.dir / "stats.csv").string(), stats_.csv());
+    write_checkpoint(f, 0);
+    record_.frames_written = f + 1;
+    write_run_json("running");
   }
 
-  void log_frame(int f, std::chrono::steady_clock::time_point start) {
-    if (opt_.quiet) return;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double eta = wall / f * (scene_.time.frames - f);
-    std::fprintf(stderr,
-                 "frame %d/%d  t=%.4g s  steps=%lld  particles=%zu  GS sweeps=%ld%s  wall=%.1f s  "
-                 "eta=%.1f s\n",
-                 f, scene_.time.frames, sim_.time(), static_cast<long long>(sim_.steps()),
-                 sim_.particles().size(), iterations_since_log_,
-                 capped_since_log_ ? fmt::format(" ({} capped)", capped_since_log_).c_str() : "",
-                 wall, eta);
-    iterations_since_log_ = 0;
-    capped_since_log_ = 0;
+  void write_checkpoint(int frame, int substep) {
+    Checkpoint c = capture_checkpoint(sim_);
+    c.scene_hash = record_.scene_hash;
+    c.frame = frame;
+    c.substep = substep;
+    for (const std::string& f : set_.formats) c.formats += (c.formats.empty() ? "" : ",") + f;
+    c.frame_times = frame_times_;
+    const std::string path = (set_.dir / "checkpoint.bin").string();
+    write_file_atomic(path, encode_checkpoint(c, path));
   }
 
-  int interrupted(int last_frame) {
-    write_file_atomic((dir_ / "stats.csv").string(), stats_.csv());
+  void write_run_json(const char* status) {
+    record_.status = status;
+    if (record_.status != "running") record_.ended = utc_now();
+    record_.steps = sim_.steps();
+    record_.time = sim_.time();
+    record_.transfer = record_.assembly = record_.solve = record_.advection = 0.0;
+    for (const StepStats& s : stats_.rows()) {
+      record_.transfer += s.transfer_seconds;
+      record_.assembly += s.assembly_seconds;
+      record_.solve += s.solve_seconds;
+      record_.advection += s.advection_seconds;
+    }
+    write_file_atomic((set_.dir / "run.json").string(), format_run_json(record_));
+  }
+
+  // An interrupt (or --stop-after-frame) after a whole step: everything
+  // needed to continue is saved, then exit code 130 as for a shell's Ctrl-C.
+  int stop(Progress& progress, int last_frame, int substep) {
+    write_file_atomic((set_.dir / "stats.csv").string(), stats_.csv());
+    write_checkpoint(last_frame, substep);
+    write_run_json("interrupted");
+    progress.finish();
     std::fprintf(stderr,
-                 "interrupted at t=%.6g s (step %lld); frames 0..%d in %s are complete\n",
-                 sim_.time(), static_cast<long long>(sim_.steps()), last_frame,
-                 opt_.out_dir.c_str());
+                 "interrupted at step %lld (t = %.6g s): checkpoint written; frames 0..%d are "
+                 "complete; continue with: sablier run --resume %s\n",
+                 static_cast<long long>(sim_.steps()), sim_.time(), last_frame, set_.dir.c_str());
     return 130;
   }
 
   const SceneConfig& scene_;
-  const RunOptions& opt_;
-  fs::path dir_;
+  RunSettings set_;
   Simulation<D> sim_;
   StatsTable stats_;
   std::vector<SeriesEntry> series_;
-  long iterations_since_log_ = 0;
-  int capped_since_log_ = 0;
+  std::vector<double> frame_times_;
+  RunRecord record_;
 };
 
-}  // namespace
+// Error classes to exit codes: bad input 2, output trouble 3, the simulation 4.
+template <class F>
+int guarded(F&& body) {
+  try {
+    return body();
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const CheckpointError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: simulation failed: %s\n", e.what());
+    return 4;
+  }
+}
 
-int run_command(const RunOptions& opt) {
+void start_threads_and_signals(int threads) {
+  if (threads > 0) omp_set_num_threads(threads);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+
+int start_run(const RunOptions& opt) {
   SceneConfig scene;
   try {
     scene = load_scene(opt.scene_path, opt.overrides);
@@ -152,7 +269,7 @@ int run_command(const RunOptions& opt) {
     return 2;
   }
   const fs::path dir(opt.out_dir);
-  try {
+  return guarded([&] {
     if (fs::exists(dir) && !fs::is_directory(dir)) {
       std::fprintf(stderr, "error: --out %s: exists and is not a folder\n", opt.out_dir.c_str());
       return 2;
@@ -167,20 +284,79 @@ int run_command(const RunOptions& opt) {
       }
       remove_run_outputs(dir);
     }
+    RunSettings set{dir, opt.formats, opt.quiet, opt.stop_after_frame, scene_to_toml(scene)};
     ensure_directory((dir / "frames").string());
-    write_file_atomic((dir / "scene.toml").string(), scene_to_toml(scene));
-    if (opt.threads > 0) omp_set_num_threads(opt.threads);
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-    if (scene.dimension == 2) return Runner<2>(scene, opt).run();
-    return Runner<3>(scene, opt).run();
-  } catch (const IoError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 3;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: simulation failed: %s\n", e.what());
-    return 4;
-  }
+    write_file_atomic((dir / "scene.toml").string(), set.scene_text);
+    start_threads_and_signals(opt.threads);
+    if (scene.dimension == 2) return Runner<2>(scene, set, Simulation<2>(scene)).run();
+    return Runner<3>(scene, set, Simulation<3>(scene)).run();
+  });
+}
+
+// The stats rows of the checkpoint's steps; a later tail (written after the
+// checkpoint, or torn) is dropped.
+std::vector<StepStats> stats_until(const fs::path& dir, std::int64_t steps) {
+  const fs::path path = dir / "stats.csv";
+  if (!fs::exists(path)) throw CheckpointError(path.string() + ": missing; cannot resume");
+  std::vector<StepStats> rows = parse_stats_csv_until(read_file(path.string()), steps);
+  if (static_cast<std::int64_t>(rows.size()) != steps)
+    throw CheckpointError(
+        fmt::format("{}: holds rows for {} of the checkpoint's {} steps; cannot resume",
+                    path.string(), rows.size(), steps));
+  return rows;
+}
+
+template <int D>
+int resume_from(const SceneConfig& scene, RunSettings set, const Checkpoint& c,
+                const std::string& source, std::vector<StepStats> rows) {
+  // Everything is read and checked before the first write.
+  Simulation<D> sim = restore_simulation<D>(scene, c, source);
+  return Runner<D>(scene, std::move(set), std::move(sim)).resume(c, std::move(rows));
+}
+
+int resume_run(const RunOptions& opt) {
+  const fs::path dir(opt.resume_dir);
+  const fs::path scene_path = dir / "scene.toml", ckpt_path = dir / "checkpoint.bin";
+  for (const fs::path& p : {scene_path, ckpt_path})
+    if (!fs::exists(p)) {
+      std::fprintf(stderr, "error: --resume %s: no %s: not the folder of a sablier run\n",
+                   opt.resume_dir.c_str(), p.filename().c_str());
+      return 2;
+    }
+  return guarded([&] {
+    RunSettings set{dir, {}, opt.quiet, opt.stop_after_frame, read_file(scene_path.string())};
+    const SceneConfig scene = parse_scene(set.scene_text, scene_path.string());
+    const Checkpoint c = decode_checkpoint(read_file(ckpt_path.string()), ckpt_path.string());
+    const std::uint64_t hash = fnv1a64(set.scene_text);
+    if (c.scene_hash != hash)
+      throw CheckpointError(fmt::format(
+          "{}: written for another scene (hash {}) than {} (hash {}); cannot resume",
+          ckpt_path.string(), hash_hex(c.scene_hash), scene_path.string(), hash_hex(hash)));
+    if (c.dimension != scene.dimension)
+      throw CheckpointError(ckpt_path.string() +
+                            ": dimension differs from the scene's; cannot resume");
+    const std::string bad = parse_formats(c.formats, set.formats);
+    if (!bad.empty())
+      throw CheckpointError(ckpt_path.string() + ": unknown format \"" + bad + "\"; cannot resume");
+    if (c.frame >= scene.time.frames) {
+      std::fprintf(stderr, "nothing to resume: the run in %s is finished (all %d frames written)\n",
+                   opt.resume_dir.c_str(), scene.time.frames);
+      return 0;
+    }
+    std::vector<StepStats> rows = stats_until(dir, c.steps);
+    start_threads_and_signals(opt.threads);
+    if (!opt.quiet)
+      std::fprintf(stderr, "resuming %s at frame %d, step %lld (t = %.6g s)\n",
+                   opt.resume_dir.c_str(), c.frame, static_cast<long long>(c.steps), c.time);
+    if (scene.dimension == 2) return resume_from<2>(scene, set, c, ckpt_path.string(), rows);
+    return resume_from<3>(scene, set, c, ckpt_path.string(), rows);
+  });
+}
+
+}  // namespace
+
+int run_command(const RunOptions& opt) {
+  return opt.resume_dir.empty() ? start_run(opt) : resume_run(opt);
 }
 
 }  // namespace sablier

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <sstream>
+#include <stdexcept>
 
 #include "io/writers.hpp"
 
@@ -26,42 +27,71 @@ std::string StatsTable::csv() const {
   return fmt::to_string(out);
 }
 
+namespace {
+
+// One data row; false (with `error` set) if it is not 16 numbers.
+bool parse_stats_row(const std::string& line, StepStats& s, std::string& error) {
+  std::vector<double> v;
+  std::istringstream ls(line);
+  std::string cell;
+  while (std::getline(ls, cell, ',')) {
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(cell, &used));
+      if (used != cell.size()) throw std::invalid_argument(cell);
+    } catch (const std::exception&) {
+      error = "stats.csv: bad number \"" + cell + "\"";
+      return false;
+    }
+  }
+  if (v.size() != 16) {
+    error = "stats.csv: expected 16 columns in \"" + line + "\"";
+    return false;
+  }
+  s.step = static_cast<long>(v[0]);
+  s.time = v[1];
+  s.dt = v[2];
+  s.particles = static_cast<long>(v[3]);
+  s.active_nodes = static_cast<long>(v[4]);
+  s.iterations = static_cast<int>(v[5]);
+  s.residual = v[6];
+  s.kinetic_energy = v[7];
+  s.potential_energy = v[8];
+  s.max_speed = v[9];
+  s.wall_seconds = v[10];
+  s.hit_cap = v[11] != 0.0;
+  s.transfer_seconds = v[12];
+  s.assembly_seconds = v[13];
+  s.solve_seconds = v[14];
+  s.advection_seconds = v[15];
+  return true;
+}
+
+}  // namespace
+
 std::vector<StepStats> parse_stats_csv(const std::string& text) {
   std::istringstream in(text);
-  std::string line;
+  std::string line, error;
   if (!std::getline(in, line) || line != kStatsHeader) throw IoError("stats.csv: bad header");
   std::vector<StepStats> rows;
+  StepStats s;
   while (std::getline(in, line)) {
-    std::vector<double> v;
-    std::istringstream ls(line);
-    std::string cell;
-    while (std::getline(ls, cell, ',')) {
-      try {
-        v.push_back(std::stod(cell));
-      } catch (const std::exception&) {
-        throw IoError("stats.csv: bad number \"" + cell + "\"");
-      }
-    }
-    if (v.size() != 16) throw IoError("stats.csv: expected 16 columns in \"" + line + "\"");
-    StepStats s;
-    s.step = static_cast<long>(v[0]);
-    s.time = v[1];
-    s.dt = v[2];
-    s.particles = static_cast<long>(v[3]);
-    s.active_nodes = static_cast<long>(v[4]);
-    s.iterations = static_cast<int>(v[5]);
-    s.residual = v[6];
-    s.kinetic_energy = v[7];
-    s.potential_energy = v[8];
-    s.max_speed = v[9];
-    s.wall_seconds = v[10];
-    s.hit_cap = v[11] != 0.0;
-    s.transfer_seconds = v[12];
-    s.assembly_seconds = v[13];
-    s.solve_seconds = v[14];
-    s.advection_seconds = v[15];
+    if (!parse_stats_row(line, s, error)) throw IoError(error);
     rows.push_back(s);
   }
+  return rows;
+}
+
+std::vector<StepStats> parse_stats_csv_until(const std::string& text, long last_step) {
+  std::istringstream in(text);
+  std::string line, error;
+  if (!std::getline(in, line) || line != kStatsHeader) throw IoError("stats.csv: bad header");
+  std::vector<StepStats> rows;
+  StepStats s;
+  // A row without its newline is a torn write: dropped like a bad one.
+  while (std::getline(in, line) && !in.eof() && parse_stats_row(line, s, error) &&
+         s.step <= last_step)
+    rows.push_back(s);
   return rows;
 }
 

@@ -34,5 +34,9 @@ extern const char* const kStatsHeader;
 
 // Parses stats.csv text (tests, tools). Throws IoError.
 std::vector<StepStats> parse_stats_csv(const std::string& text);
+// The rows of steps up to `last_step` (a resumed run continues after them),
+// stopping at the first malformed or unterminated row (a torn tail). Throws
+// IoError on a bad header.
+std::vector<StepStats> parse_stats_csv_until(const std::string& text, long last_step);
 
 }  // namespace sablier

@@ -2,6 +2,7 @@
 // same folder, then rename), so a crash never leaves a truncated file.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,6 +28,12 @@ std::string read_file(const std::string& path);
 std::string format_vtp(const ParticleFrame& frame);
 // CSV with header x,y[,z],vx,vy[,vz],volume,pressure,phi,sxx,syy[,szz],sxy[,sxz,syz]
 std::string format_particle_csv(const ParticleFrame& frame);
+
+// Binary PLY (binary_little_endian 1.0), one vertex per particle: float
+// x, y, z (z = 0 in 2D), then doubles vx, vy, vz, volume, pressure, phi,
+// shear_rate, id. A comment line in the header gives the dimension and time.
+std::string format_ply(const ParticleFrame& frame);
+constexpr std::size_t kPlyVertexBytes = 3 * 4 + 8 * 8;
 
 // ParaView collection of frames: entries (time, relative file name).
 struct SeriesEntry {

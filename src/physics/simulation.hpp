@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -69,6 +70,17 @@ class Simulation {
   Mat<D> row_bulk_stress(int j) const;
 
   ParticleFrame frame() const;
+
+  // Checkpointing (app/checkpoint_state.hpp). Besides the scene and the
+  // particles, the future depends on the clock and on the warm start of the
+  // next solve: last step's stresses per grid node. Everything else is
+  // rebuilt from these at the start of each step.
+  const std::vector<SymVec<D>>& warm_start() const { return warm_lambda_; }
+  void restore_clock(double time, std::int64_t steps, std::vector<SymVec<D>> warm_start) {
+    time_ = time;
+    steps_ = steps;
+    warm_lambda_ = std::move(warm_start);
+  }
 
  private:
   void init_boundaries();

@@ -1,0 +1,86 @@
+// Between a Simulation<D> and the plain arrays of checkpoint.bin.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/checkpoint.hpp"
+#include "physics/simulation.hpp"
+
+namespace sablier {
+namespace detail {
+
+// Appends the coefficients of fixed-size Eigen values to `out` (column-major).
+template <class T>
+void flatten(const std::vector<T>& values, std::vector<double>& out) {
+  out.reserve(out.size() + values.size() * T::SizeAtCompileTime);
+  for (const T& v : values)
+    for (Eigen::Index k = 0; k < T::SizeAtCompileTime; ++k) out.push_back(v.data()[k]);
+}
+
+template <class T>
+std::vector<T> unflatten(const std::vector<double>& in) {
+  std::vector<T> out(in.size() / T::SizeAtCompileTime);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (Eigen::Index k = 0; k < T::SizeAtCompileTime; ++k)
+      out[i].data()[k] = in[i * T::SizeAtCompileTime + k];
+  return out;
+}
+
+}  // namespace detail
+
+// The simulation's part of a checkpoint; the caller adds the run's part
+// (scene hash, frame, substep, formats, frame times).
+template <int D>
+Checkpoint capture_checkpoint(const Simulation<D>& sim) {
+  const Particles<D>& p = sim.particles();
+  Checkpoint c;
+  c.dimension = D;
+  c.steps = sim.steps();
+  c.time = sim.time();
+  c.particles = p.size();
+  detail::flatten(p.position, c.position);
+  detail::flatten(p.velocity, c.velocity);
+  detail::flatten(p.affine, c.affine);
+  c.volume = p.volume;
+  c.cohesion = p.cohesion;
+  c.inertial = p.inertial;
+  c.id = p.id;
+  detail::flatten(p.stress, c.stress);
+  c.phi = p.phi;
+  c.shear_rate = p.shear_rate;
+  c.nodes = sim.warm_start().size();
+  detail::flatten(sim.warm_start(), c.warm_stress);
+  return c;
+}
+
+// The simulation a checkpoint describes (decode_checkpoint checked the
+// arrays' sizes). The constructor sorts the particles by cell, as the next
+// step would anyway (a stable sort, so the order is the same). Throws
+// CheckpointError naming `source` when the checkpoint's grid is not the
+// scene's.
+template <int D>
+Simulation<D> restore_simulation(const SceneConfig& scene, const Checkpoint& c,
+                                 const std::string& source) {
+  Particles<D> p;
+  p.position = detail::unflatten<Vec<D>>(c.position);
+  p.velocity = detail::unflatten<Vec<D>>(c.velocity);
+  p.affine = detail::unflatten<Mat<D>>(c.affine);
+  p.volume = c.volume;
+  p.cohesion = c.cohesion;
+  p.inertial = c.inertial;
+  p.id = c.id;
+  p.stress = detail::unflatten<SymVec<D>>(c.stress);
+  p.phi = c.phi;
+  p.shear_rate = c.shear_rate;
+  Simulation<D> sim(scene, std::move(p));
+  const auto nodes = static_cast<std::uint64_t>(sim.grid().node_count());
+  if (c.nodes != nodes)
+    throw CheckpointError(source + ": holds " + std::to_string(c.nodes) +
+                          " grid nodes, the scene's grid has " + std::to_string(nodes) +
+                          "; cannot resume");
+  sim.restore_clock(c.time, c.steps, detail::unflatten<SymVec<D>>(c.warm_stress));
+  return sim;
+}
+
+}  // namespace sablier

@@ -1,0 +1,136 @@
+#include "io/checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <limits>
+
+#include "io/bytes.hpp"
+#include "io/hash.hpp"
+
+namespace sablier {
+namespace {
+
+const char kMagic[] = "SABLIERCKPT";
+constexpr std::size_t kMagicSize = sizeof kMagic - 1;
+// Magic, then u32 version, u32 dimension, u64 hash, i64 steps, f64 time,
+// i32 frame, i32 substep, u64 particles, u64 nodes, u32 formats length,
+// u32 frame-time count.
+constexpr std::size_t kHeaderBytes = kMagicSize + 4 + 4 + 8 + 8 + 8 + 4 + 4 + 8 + 8 + 4 + 4;
+
+// Calls f(array, values per item, item count) on every array, in file order;
+// one list for writing and reading keeps the two in step.
+template <class C, class F>
+void for_each_array(C& c, F&& f) {
+  const std::uint64_t d = c.dimension, s = d * (d + 1) / 2, n = c.particles;
+  f(c.position, d, n);
+  f(c.velocity, d, n);
+  f(c.affine, d * d, n);
+  f(c.volume, 1, n);
+  f(c.cohesion, 1, n);
+  f(c.inertial, 1, n);
+  f(c.id, 1, n);
+  f(c.stress, s, n);
+  f(c.phi, 1, n);
+  f(c.shear_rate, 1, n);
+  f(c.warm_stress, s, c.nodes);
+}
+
+// File size the header announces; max() when its counts cannot fit in a
+// file of `available` bytes (a corrupted header).
+std::uint64_t expected_size(const Checkpoint& c, std::uint64_t available) {
+  if (c.particles > available || c.nodes > available || (c.dimension != 2 && c.dimension != 3))
+    return std::numeric_limits<std::uint64_t>::max();
+  std::uint64_t values = c.frame_times.size();
+  for_each_array(
+      c, [&](const auto&, std::uint64_t per, std::uint64_t count) { values += per * count; });
+  return kHeaderBytes + c.formats.size() + 8 * values + 8;
+}
+
+}  // namespace
+
+std::string encode_checkpoint(const Checkpoint& c, const std::string& target) {
+  ByteWriter w;
+  w.put_bytes(std::string(kMagic, kMagicSize));
+  w.put<std::uint32_t>(Checkpoint::kFormatVersion);
+  w.put<std::uint32_t>(c.dimension);
+  w.put(c.scene_hash);
+  w.put(c.steps);
+  w.put(c.time);
+  w.put(c.frame);
+  w.put(c.substep);
+  w.put(c.particles);
+  w.put(c.nodes);
+  w.put<std::uint32_t>(c.formats.size());
+  w.put<std::uint32_t>(c.frame_times.size());
+  w.put_bytes(c.formats);
+  for (double t : c.frame_times) w.put(t);
+  for_each_array(c, [&](const auto& v, std::uint64_t per, std::uint64_t count) {
+    if (v.size() != per * count)
+      throw CheckpointError(fmt::format("{}: internal error: an array holds {} values, not {}",
+                                        target, v.size(), per * count));
+    for (const auto x : v) w.put(x);
+  });
+  w.put(fnv1a64(w.data()));
+  return std::move(w.data());
+}
+
+Checkpoint decode_checkpoint(const std::string& bytes, const std::string& source) {
+  const auto fail = [&](const std::string& what) {
+    return CheckpointError(source + ": " + what + "; cannot resume");
+  };
+  const std::size_t size = bytes.size();
+  if (bytes.compare(0, kMagicSize, kMagic) != 0) {
+    if (size < kMagicSize && bytes == std::string(kMagic, size))
+      throw fail(fmt::format("truncated ({} bytes)", size));
+    throw fail("not a sablier checkpoint (no SABLIERCKPT signature)");
+  }
+  ByteReader r(bytes, kMagicSize);
+  const auto version = r.get<std::uint32_t>();
+  if (!r.ok()) throw fail(fmt::format("truncated ({} bytes)", size));
+  if (version != Checkpoint::kFormatVersion)
+    throw fail(fmt::format("checkpoint format version {}, this sablier ({}) reads version {}",
+                           version, SABLIER_VERSION, Checkpoint::kFormatVersion));
+  Checkpoint c;
+  c.dimension = static_cast<int>(r.get<std::uint32_t>());
+  c.scene_hash = r.get<std::uint64_t>();
+  c.steps = r.get<std::int64_t>();
+  c.time = r.get<double>();
+  c.frame = r.get<std::int32_t>();
+  c.substep = r.get<std::int32_t>();
+  c.particles = r.get<std::uint64_t>();
+  c.nodes = r.get<std::uint64_t>();
+  const auto formats_size = r.get<std::uint32_t>();
+  const auto frame_count = r.get<std::uint32_t>();
+  if (!r.ok()) throw fail(fmt::format("truncated ({} bytes)", size));
+  c.formats.assign(formats_size <= size ? formats_size : 0, ' ');
+  c.frame_times.resize(frame_count <= size ? frame_count : 0);
+
+  // The checksum first: every later check may then trust the counts.
+  const std::uint64_t expected = formats_size <= size && frame_count <= size
+                                     ? expected_size(c, size)
+                                     : std::numeric_limits<std::uint64_t>::max();
+  ByteReader tail(bytes, size >= 8 ? size - 8 : size);
+  const std::uint64_t stored = tail.get<std::uint64_t>();
+  if (!tail.ok() || fnv1a64(bytes.data(), size - 8) != stored) {
+    if (size < expected)
+      throw fail(expected == std::numeric_limits<std::uint64_t>::max()
+                     ? fmt::format("truncated or corrupted ({} bytes, checksum mismatch)", size)
+                     : fmt::format("truncated ({} of {} bytes)", size, expected));
+    throw fail("corrupted (checksum mismatch)");
+  }
+  if (size != expected)
+    throw fail(fmt::format("inconsistent ({} bytes, header says {})", size, expected));
+  if (c.frame < 0 || c.substep < 0 || c.steps < 0 || frame_count != std::uint32_t(c.frame) + 1)
+    throw fail("inconsistent header (frame, substep or step count)");
+
+  for (char& ch : c.formats) ch = static_cast<char>(r.get<std::uint8_t>());
+  for (double& t : c.frame_times) t = r.get<double>();
+  for_each_array(c, [&](auto& v, std::uint64_t per, std::uint64_t count) {
+    v.resize(per * count);
+    for (auto& x : v) x = r.get<std::remove_reference_t<decltype(x)>>();
+  });
+  return c;
+}
+
+}  // namespace sablier

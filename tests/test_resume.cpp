@@ -1,0 +1,279 @@
+// Interrupt and resume: an interrupted run leaves a checkpoint, and
+// `sablier run --resume DIR` continues it bit for bit as if it had never
+// stopped; a damaged checkpoint is refused with one line and nothing written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "io/checkpoint.hpp"
+#include "io/stats_writer.hpp"
+#include "io/writers.hpp"
+
+namespace sablier {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string output;
+};
+
+// Runs a shell command line; `{bin}` in it is the sablier binary.
+Result shell(const std::string& line) {
+  // One log per process: ctest runs the tests of this file in parallel.
+  const fs::path log =
+      fs::temp_directory_path() / ("sablier_resume_log_" + std::to_string(::getpid()) + ".txt");
+  const std::string cmd = "(" + line + ") > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  Result r{WEXITSTATUS(status), read_file(log.string())};
+  fs::remove(log);
+  return r;
+}
+
+Result sablier(const std::string& args) { return shell(std::string(SABLIER_BINARY) + " " + args); }
+
+std::string scene(const char* name) { return std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name; }
+
+fs::path fresh(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("sablier_resume_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+// One thread: the comparison is between equal thread counts, and ctest runs
+// tests side by side on few cores.
+const std::string kSmall = " --set time.frames=4 --set grid.resolution=[40,10] --threads 1 --quiet";
+
+std::string run_args(const fs::path& dir, const std::string& extra = "") {
+  return "run " + scene("collapse2d.toml") + " --out " + dir.string() + kSmall + extra;
+}
+
+std::string file(const fs::path& p) { return read_file(p.string()); }
+
+// Every stats.csv column but the wall-clock ones.
+void expect_same_stats(const fs::path& a, const fs::path& b) {
+  const auto ra = parse_stats_csv(file(a / "stats.csv"));
+  const auto rb = parse_stats_csv(file(b / "stats.csv"));
+  ASSERT_EQ(ra.size(), rb.size());
+  for (std::size_t i = 0; i < ra.size(); ++i) {
+    SCOPED_TRACE("row " + std::to_string(i));
+    EXPECT_EQ(ra[i].step, rb[i].step);
+    EXPECT_EQ(ra[i].time, rb[i].time);
+    EXPECT_EQ(ra[i].dt, rb[i].dt);
+    EXPECT_EQ(ra[i].particles, rb[i].particles);
+    EXPECT_EQ(ra[i].active_nodes, rb[i].active_nodes);
+    EXPECT_EQ(ra[i].iterations, rb[i].iterations);
+    EXPECT_EQ(ra[i].residual, rb[i].residual);
+    EXPECT_EQ(ra[i].kinetic_energy, rb[i].kinetic_energy);
+    EXPECT_EQ(ra[i].potential_energy, rb[i].potential_energy);
+    EXPECT_EQ(ra[i].max_speed, rb[i].max_speed);
+    EXPECT_EQ(ra[i].hit_cap, rb[i].hit_cap);
+  }
+}
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+TEST(Resume, ContinuesBitForBit) {
+  const fs::path a = fresh("a"), b = fresh("b");
+  ASSERT_EQ(sablier(run_args(a)).code, 0);
+
+  const Result stopped = sablier(run_args(b, " --stop-after-frame 2"));
+  ASSERT_EQ(stopped.code, 130) << stopped.output;
+  EXPECT_TRUE(contains(stopped.output, "checkpoint written")) << stopped.output;
+  EXPECT_TRUE(contains(stopped.output, "sablier run --resume " + b.string())) << stopped.output;
+  EXPECT_TRUE(fs::exists(b / "frames/particles_00002.vtp"));
+  EXPECT_FALSE(fs::exists(b / "frames/particles_00003.vtp"));
+  EXPECT_TRUE(contains(file(b / "run.json"), "\"status\": \"interrupted\""));
+
+  const Result resumed = sablier("run --resume " + b.string() + " --threads 1 --quiet");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  for (const char* f : {"frames/particles_00003.vtp", "frames/particles_00004.vtp", "series.pvd"})
+    EXPECT_EQ(file(a / f), file(b / f)) << f;
+  expect_same_stats(a, b);
+  const std::string json = file(b / "run.json");
+  EXPECT_TRUE(contains(json, "\"status\": \"finished\"")) << json;
+  EXPECT_TRUE(contains(json, "\"resumed_from_step\": 2")) << json;
+
+  // Nothing left to do: said so, and nothing changes.
+  const Result again = sablier("run --resume " + b.string() + " --quiet");
+  EXPECT_EQ(again.code, 0) << again.output;
+  EXPECT_TRUE(contains(again.output, "finished")) << again.output;
+  EXPECT_EQ(file(b / "run.json"), json);
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
+// A real signal lands anywhere, mostly within a frame: fixed substeps make
+// the resumed run depend on how many steps of the frame were done. A run
+// killed outright (-9) resumes from the checkpoint of its last frame.
+TEST(Resume, AfterASignal) {
+  const fs::path a = fresh("sig_a");
+  const std::string extra = " --set time.frames=10 --set time.substeps=4";
+  ASSERT_EQ(sablier(run_args(a, extra)).code, 0);
+  for (const auto& [signal, code] : {std::pair<std::string, int>{"TERM", 130}, {"KILL", 137}}) {
+    SCOPED_TRACE(signal);
+    const fs::path b = fresh("sig_b");
+    const Result stopped =
+        shell(std::string(SABLIER_BINARY) + " " + run_args(b, extra) + " & pid=$!; while [ ! -f " +
+              (b / "frames/particles_00002.vtp").string() + " ]; do sleep 0.01; done; kill -" +
+              signal + " $pid; wait $pid");
+    ASSERT_EQ(stopped.code, code) << stopped.output;
+    if (code == 130) {
+      EXPECT_TRUE(contains(stopped.output, "interrupted at step")) << stopped.output;
+    }
+    const Result resumed = sablier("run --resume " + b.string() + " --threads 1 --quiet");
+    ASSERT_EQ(resumed.code, 0) << resumed.output;
+    EXPECT_EQ(file(a / "frames/particles_00010.vtp"), file(b / "frames/particles_00010.vtp"));
+    expect_same_stats(a, b);
+    fs::remove_all(b);
+  }
+  fs::remove_all(a);
+}
+
+// The folder's files, with their contents.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = file(e.path());
+  return files;
+}
+
+// Resuming `dir` fails with code 2, one line naming the checkpoint and
+// containing `what`, and writes nothing.
+void expect_refused(const fs::path& dir, const std::string& what) {
+  const auto before = snapshot(dir);
+  const Result r = sablier("run --resume " + dir.string() + " --quiet");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "checkpoint.bin")) << r.output;
+  EXPECT_TRUE(contains(r.output, what)) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_TRUE(snapshot(dir) == before) << "files changed";
+}
+
+TEST(Resume, RefusesADamagedCheckpoint) {
+  const fs::path dir = fresh("bad");
+  ASSERT_EQ(sablier(run_args(dir, " --stop-after-frame 1")).code, 130);
+  const fs::path ckpt = dir / "checkpoint.bin";
+  const std::string good = file(ckpt);
+  ASSERT_GT(good.size(), 1000u);
+
+  std::string flipped = good;
+  flipped[good.size() / 2] ^= 0x10;
+  write_file_atomic(ckpt.string(), flipped);
+  expect_refused(dir, "corrupted");
+
+  write_file_atomic(ckpt.string(), good.substr(0, good.size() / 3));
+  expect_refused(dir, "truncated");
+
+  std::string other_version = good;
+  other_version[11] = 99;  // the format version follows the 11-byte signature
+  write_file_atomic(ckpt.string(), other_version);
+  expect_refused(dir, "format version 99");
+
+  write_file_atomic(ckpt.string(), "not a checkpoint");
+  expect_refused(dir, "not a sablier checkpoint");
+
+  // The scene beside it is not the one it was written for.
+  write_file_atomic(ckpt.string(), good);
+  const std::string scene_text = file(dir / "scene.toml");
+  write_file_atomic((dir / "scene.toml").string(), scene_text + "# edited\n");
+  expect_refused(dir, "another scene");
+
+  write_file_atomic((dir / "scene.toml").string(), scene_text);
+  EXPECT_EQ(sablier("run --resume " + dir.string() + " --threads 1 --quiet").code, 0);
+  fs::remove_all(dir);
+}
+
+TEST(Resume, DropsStatsRowsAfterTheCheckpoint) {
+  const fs::path dir = fresh("tail");
+  ASSERT_EQ(sablier(run_args(dir, " --stop-after-frame 2")).code, 130);
+  const std::string stats = file(dir / "stats.csv");
+  const auto rows_before = parse_stats_csv(stats);
+  ASSERT_FALSE(rows_before.empty());
+  // A row the checkpoint does not cover (as if written after it), then a torn one.
+  const std::string last = stats.substr(stats.rfind('\n', stats.size() - 2) + 1);
+  const std::string later =
+      std::to_string(rows_before.back().step + 1) + last.substr(last.find(','));
+  write_file_atomic((dir / "stats.csv").string(), stats + later + "9,0.1");
+  ASSERT_EQ(sablier("run --resume " + dir.string() + " --threads 1 --quiet").code, 0);
+  const auto rows = parse_stats_csv(file(dir / "stats.csv"));
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].step, static_cast<long>(i + 1));
+  fs::remove_all(dir);
+}
+
+TEST(Resume, ResumeNeedsARunFolder) {
+  const fs::path dir = fresh("none");
+  fs::create_directories(dir);
+  const Result r = sablier("run --resume " + dir.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.output, "not the folder of a sablier run")) << r.output;
+  const Result mixed = sablier("run --resume " + dir.string() + " --set material.mu=0.3");
+  EXPECT_NE(mixed.code, 0);
+  fs::remove_all(dir);
+}
+
+Checkpoint tiny() {
+  Checkpoint c;
+  c.dimension = 2;
+  c.scene_hash = 0x0123456789abcdefull;
+  c.steps = 7;
+  c.time = 0.1;
+  c.frame = 1;
+  c.substep = 2;
+  c.formats = "vtp,ply";
+  c.frame_times = {0.0, 1.0 / 30.0};
+  c.particles = 2;
+  c.position = {0.1, 0.2, 0.3, 0.4};
+  c.velocity = {-1.0, 1.0, 2.0, 1e-300};
+  c.affine = {1, 2, 3, 4, 5, 6, 7, 8};
+  c.volume = {1e-6, 2e-6};
+  c.cohesion = {0.0, 5.0};
+  c.inertial = {0.0, std::numeric_limits<double>::infinity()};
+  c.id = {42, -1};
+  c.stress = {1, 2, 3, 4, 5, 6};
+  c.phi = {0.6, 0.5};
+  c.shear_rate = {0.0, 3.0};
+  c.nodes = 3;
+  c.warm_stress = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+  return c;
+}
+
+TEST(Resume, CheckpointRoundTrip) {
+  const Checkpoint c = tiny();
+  const std::string bytes = encode_checkpoint(c, "t.bin");
+  EXPECT_EQ(bytes.substr(0, 11), "SABLIERCKPT");
+  const Checkpoint d = decode_checkpoint(bytes, "t.bin");
+  EXPECT_EQ(d.scene_hash, c.scene_hash);
+  EXPECT_EQ(d.steps, c.steps);
+  EXPECT_EQ(d.time, c.time);
+  EXPECT_EQ(d.frame, c.frame);
+  EXPECT_EQ(d.substep, c.substep);
+  EXPECT_EQ(d.formats, c.formats);
+  EXPECT_EQ(d.frame_times, c.frame_times);
+  EXPECT_EQ(d.velocity, c.velocity);
+  EXPECT_EQ(d.affine, c.affine);
+  EXPECT_EQ(d.inertial, c.inertial);
+  EXPECT_EQ(d.id, c.id);
+  EXPECT_EQ(d.warm_stress, c.warm_stress);
+  // Every truncation is refused, whatever its length.
+  for (std::size_t n = 0; n < bytes.size(); ++n)
+    EXPECT_THROW(decode_checkpoint(bytes.substr(0, n), "t.bin"), CheckpointError) << n;
+  // Arrays that disagree with the counts are not written.
+  Checkpoint bad = c;
+  bad.phi.pop_back();
+  EXPECT_THROW(encode_checkpoint(bad, "t.bin"), CheckpointError);
+}
+
+}  // namespace
+}  // namespace sablier
