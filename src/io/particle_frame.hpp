@@ -22,6 +22,7 @@ struct ParticleFrame {
   std::vector<double> stress;
   std::vector<double> shear_rate;  // equivalent shear rate sqrt(2 Dev D : Dev D), 1/s
   std::vector<double> id;          // stable particle id (as double for VTK simplicity)
+  std::vector<double> material;    // material index: the [[sand]] block the particle came from
 
   int stress_components() const { return dimension == 2 ? 3 : 6; }
 };

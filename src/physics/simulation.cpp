@@ -250,6 +250,7 @@ ParticleFrame Simulation<D>::frame() const {
   f.stress.resize(n * SD);
   f.shear_rate = particles_.shear_rate;
   f.id.resize(n);
+  f.material.assign(n, 0.0);  // one material per scene for now
   for (std::size_t p = 0; p < n; ++p) {
     for (int a = 0; a < D; ++a) {
       f.position[p * D + a] = particles_.position[p][a];
