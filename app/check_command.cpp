@@ -1,19 +1,53 @@
 // `sablier check` (validate and summarise a scene) and `sablier info`.
 #include <omp.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "physics/emission.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
 
 namespace sablier {
 namespace {
 
+const char* shape_name(SandShape shape, int d) {
+  switch (shape) {
+    case SandShape::Box: return "box";
+    case SandShape::Cylinder: return d == 2 ? "disk" : "cylinder";
+    case SandShape::Sphere: return "sphere";
+    case SandShape::Polygon: return "polygon";
+    case SandShape::Mesh: return "mesh";
+  }
+  return "";
+}
+
+// Particles per [[sand]] block, and each spout's rate (emission.hpp).
+void print_sources(const SceneConfig& s, const std::vector<std::size_t>& counts) {
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    std::printf("  sand[%zu]  %s, %zu particles\n", k, shape_name(s.sand[k].shape, s.dimension),
+                counts[k]);
+  const double end = s.time.frames / s.time.fps;
+  const char* unit = s.dimension == 2 ? "kg/s per m of depth" : "kg/s";
+  for (std::size_t k = 0; k < s.spouts.size(); ++k) {
+    const SpoutConfig& sp = s.spouts[k];
+    const double spacing = spout_spacing(s, sp);
+    const std::size_t layer = spout_layer_size(s.dimension, sp.radius, spacing);
+    const std::int64_t layers = spout_layers(sp, spacing, end);
+    std::printf("  spout[%zu] rate %.6g %s (rho phi_max |v| A; %.6g as emitted, %zu particles "
+                "per layer), from t = %g s to %s: %lld particles by the end\n",
+                k, spout_nominal_rate(s, sp), unit, spout_lattice_rate(s, sp), layer, sp.start,
+                std::isfinite(sp.stop) ? fmt::format("{} s", sp.stop).c_str() : "the end",
+                static_cast<long long>(layers * static_cast<std::int64_t>(layer)));
+  }
+}
+
 template <int D>
 void print_summary(const SceneConfig& s) {
-  const Particles<D> p = seed_particles<D>(s);
+  std::vector<std::size_t> counts;
+  const Particles<D> p = seed_particles<D>(s, &counts);
   std::string cells = std::to_string(s.resolution[0]);
   std::string size = fmt::format("{}", s.size[0]);
   long long ncells = s.resolution[0];
@@ -22,13 +56,15 @@ void print_summary(const SceneConfig& s) {
     size += fmt::format(" x {}", s.size[a]);
     ncells *= s.resolution[a];
   }
-  double volume = 0.0;
-  for (double v : p.volume) volume += v;
+  const std::vector<Material> materials = material_table(s);
+  double mass = 0.0;  // each [[sand]] block with its own density
+  for (std::size_t k = 0; k < p.size(); ++k) mass += materials[p.material[k]].density * p.volume[k];
   std::printf("scene      %s (%dD)\n", s.source.c_str(), D);
   std::printf("domain     %s m, %s cells of %.4g m (%lld cells)\n", size.c_str(), cells.c_str(),
               s.cell_size(), ncells);
   std::printf("particles  %zu in %zu region(s), grain mass %.6g kg\n", p.size(), s.sand.size(),
-              s.material.density * volume);
+              mass);
+  print_sources(s, counts);
   std::printf("time       %d frames at %g fps (%g s), %s\n", s.time.frames, s.time.fps,
               s.time.frames / s.time.fps,
               s.time.substeps > 0 ? fmt::format("{} sub-steps per frame", s.time.substeps).c_str()

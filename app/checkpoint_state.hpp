@@ -46,6 +46,7 @@ Checkpoint capture_checkpoint(const Simulation<D>& sim) {
   c.cohesion = p.cohesion;
   c.inertial = p.inertial;
   c.id = p.id;
+  c.material.assign(p.material.begin(), p.material.end());
   detail::flatten(p.stress, c.stress);
   c.phi = p.phi;
   c.shear_rate = p.shear_rate;
@@ -70,6 +71,15 @@ Simulation<D> restore_simulation(const SceneConfig& scene, const Checkpoint& c,
   p.cohesion = c.cohesion;
   p.inertial = c.inertial;
   p.id = c.id;
+  p.material.resize(c.material.size());
+  const auto materials = static_cast<std::int64_t>(material_table(scene).size());
+  for (std::size_t k = 0; k < c.material.size(); ++k) {
+    if (c.material[k] < 0 || c.material[k] >= materials)
+      throw CheckpointError(source + ": particle material " + std::to_string(c.material[k]) +
+                            " but the scene has " + std::to_string(materials) +
+                            " materials; cannot resume");
+    p.material[k] = static_cast<std::int32_t>(c.material[k]);
+  }
   p.stress = detail::unflatten<SymVec<D>>(c.stress);
   p.phi = c.phi;
   p.shear_rate = c.shear_rate;

@@ -11,11 +11,14 @@ struct RunOptions {
   std::string out_dir;
   std::vector<std::string> overrides;  // --set KEY=VALUE
   std::vector<std::string> formats{"vtp"};
+  bool compress = false;  // zlib-compressed VTK files (.vtp, .vti)
+  bool grid = false;      // also frames/grid_NNNNN.vti and grid_series.pvd
   int threads = 0;  // 0 = OpenMP default
   bool quiet = false;
   bool overwrite = false;
   // `run --resume DIR`: continue the run in DIR from its checkpoint (the
-  // scene, formats and folder are the run's own; only threads and quiet apply).
+  // scene, formats, output options and folder are the run's own; only
+  // threads and quiet apply).
   std::string resume_dir;
   // For tests: after writing this frame, stop as an interrupt would (0: never).
   int stop_after_frame = 0;

@@ -17,6 +17,12 @@ int main(int argc, char** argv) {
       run_cmd->add_option("--set", run.overrides, "Override a scene key: --set material.mu=0.3");
   CLI::Option* format_opt =
       run_cmd->add_option("--format", formats, "Particle formats, comma-separated: vtp,csv,ply");
+  CLI::Option* compress_opt = run_cmd->add_flag(
+      "--compress", run.compress, "Compress the VTK files (.vtp, .vti) with zlib, as VTK reads them");
+  CLI::Option* grid_opt = run_cmd->add_flag(
+      "--grid", run.grid,
+      "Also write the grid's phi, velocity, pressure and active nodes: frames/grid_NNNNN.vti, "
+      "grid_series.pvd");
   run_cmd->add_option("--threads", run.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   run_cmd->add_flag("--quiet,-q", run.quiet, "No progress output");
@@ -29,6 +35,8 @@ int main(int argc, char** argv) {
       ->excludes(out_opt)
       ->excludes(set_opt)
       ->excludes(format_opt)
+      ->excludes(compress_opt)
+      ->excludes(grid_opt)
       ->excludes(overwrite_opt);
   // For tests of --resume: stop as an interrupt would, after writing frame N.
   run_cmd->add_option("--stop-after-frame", run.stop_after_frame)

@@ -46,8 +46,8 @@ void on_signal(int) { g_interrupted = 1; }
 
 // Files a run writes at the top of its folder: their presence means the
 // folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv", "series.pvd", "scene.toml", "run.json",
-                                 "checkpoint.bin"};
+const char* const kRunFiles[] = {"stats.csv", "series.pvd", "grid_series.pvd", "scene.toml",
+                                 "run.json",  "checkpoint.bin"};
 
 bool holds_run_outputs(const fs::path& dir) {
   for (const char* f : kRunFiles)
@@ -63,6 +63,7 @@ void remove_run_outputs(const fs::path& dir) {
 std::string frame_name(int frame, const char* ext) {
   return fmt::format("frames/particles_{:05d}.{}", frame, ext);
 }
+std::string grid_name(int frame) { return fmt::format("frames/grid_{:05d}.vti", frame); }
 
 // What a Runner needs besides the scene and the simulation.
 struct RunSettings {
@@ -71,7 +72,38 @@ struct RunSettings {
   bool quiet = false;
   int stop_after_frame = 0;
   std::string scene_text;  // scene.toml as written
+  bool compress = false, grid = false;
 };
+
+// The checkpoint's formats text: the particle formats, then the output
+// options ("grid", "compress"), comma-separated, so that --resume writes
+// the same files as the run it continues.
+std::string outputs_text(const RunSettings& s) {
+  std::string text;
+  for (const std::string& f : s.formats) text += (text.empty() ? "" : ",") + f;
+  if (s.grid) text += ",grid";
+  if (s.compress) text += ",compress";
+  return text;
+}
+
+// Sets the formats and output options from outputs_text's text; returns
+// the first unknown name, or "" if all are known.
+std::string parse_outputs_text(const std::string& text, RunSettings& s) {
+  std::string formats;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    if (item == "grid")
+      s.grid = true;
+    else if (item == "compress")
+      s.compress = true;
+    else
+      formats += (formats.empty() ? "" : ",") + item;
+    start = comma + 1;
+  }
+  return parse_formats(formats, s.formats);
+}
 
 template <int D>
 class Runner {
@@ -81,6 +113,8 @@ class Runner {
     record_.scene_text = set_.scene_text;
     record_.scene_hash = fnv1a64(set_.scene_text);
     record_.formats = set_.formats;
+    record_.compress = set_.compress;
+    record_.grid = set_.grid;
     record_.threads = omp_get_max_threads();
     record_.started = utc_now();
     record_.frames = scene_.time.frames;
@@ -100,6 +134,9 @@ class Runner {
     if (writes("vtp"))
       for (std::size_t f = 0; f < frame_times_.size(); ++f)
         series_.push_back({frame_times_[f], frame_name(static_cast<int>(f), "vtp")});
+    if (set_.grid)
+      for (std::size_t f = 0; f < frame_times_.size(); ++f)
+        grid_series_.push_back({frame_times_[f], grid_name(static_cast<int>(f))});
     record_.resumed_from_step = c.steps;
     record_.frames_written = c.frame + 1;
     write_run_json("running");
@@ -172,12 +209,13 @@ class Runner {
     const ParticleFrame frame = sim_.frame();
     const std::string base = (set_.dir / "frames/particles_").string() + fmt::format("{:05d}.", f);
     if (writes("vtp")) {
-      write_file_atomic(base + "vtp", format_vtp(frame));
+      write_file_atomic(base + "vtp", format_vtp(frame, compression()));
       series_.push_back({frame.time, frame_name(f, "vtp")});
       write_file_atomic((set_.dir / "series.pvd").string(), format_pvd(series_));
     }
     if (writes("csv")) write_file_atomic(base + "csv", format_particle_csv(frame));
     if (writes("ply")) write_file_atomic(base + "ply", format_ply(frame));
+    if (set_.grid) write_grid(f);
     frame_times_.push_back(frame.time);
     write_file_atomic((set_.dir / "stats.csv").string(), stats_.csv());
     write_checkpoint(f, 0);
@@ -185,12 +223,23 @@ class Runner {
     write_run_json("running");
   }
 
+  VtkCompression compression() const {
+    return set_.compress ? VtkCompression::Zlib : VtkCompression::None;
+  }
+
+  void write_grid(int f) {
+    const GridFrame grid = sim_.grid_frame();
+    write_file_atomic((set_.dir / grid_name(f)).string(), format_vti(grid, compression()));
+    grid_series_.push_back({grid.time, grid_name(f)});
+    write_file_atomic((set_.dir / "grid_series.pvd").string(), format_pvd(grid_series_));
+  }
+
   void write_checkpoint(int frame, int substep) {
     Checkpoint c = capture_checkpoint(sim_);
     c.scene_hash = record_.scene_hash;
     c.frame = frame;
     c.substep = substep;
-    for (const std::string& f : set_.formats) c.formats += (c.formats.empty() ? "" : ",") + f;
+    c.formats = outputs_text(set_);
     c.frame_times = frame_times_;
     const std::string path = (set_.dir / "checkpoint.bin").string();
     write_file_atomic(path, encode_checkpoint(c, path));
@@ -229,7 +278,7 @@ class Runner {
   RunSettings set_;
   Simulation<D> sim_;
   StatsTable stats_;
-  std::vector<SeriesEntry> series_;
+  std::vector<SeriesEntry> series_, grid_series_;
   std::vector<double> frame_times_;
   RunRecord record_;
 };
@@ -284,7 +333,8 @@ int start_run(const RunOptions& opt) {
       }
       remove_run_outputs(dir);
     }
-    RunSettings set{dir, opt.formats, opt.quiet, opt.stop_after_frame, scene_to_toml(scene)};
+    RunSettings set{dir,          opt.formats, opt.quiet, opt.stop_after_frame,
+                    scene_to_toml(scene), opt.compress, opt.grid};
     ensure_directory((dir / "frames").string());
     write_file_atomic((dir / "scene.toml").string(), set.scene_text);
     start_threads_and_signals(opt.threads);
@@ -335,7 +385,7 @@ int resume_run(const RunOptions& opt) {
     if (c.dimension != scene.dimension)
       throw CheckpointError(ckpt_path.string() +
                             ": dimension differs from the scene's; cannot resume");
-    const std::string bad = parse_formats(c.formats, set.formats);
+    const std::string bad = parse_outputs_text(c.formats, set);
     if (!bad.empty())
       throw CheckpointError(ckpt_path.string() + ": unknown format \"" + bad + "\"; cannot resume");
     if (c.frame >= scene.time.frames) {

@@ -72,6 +72,8 @@ std::string format_run_json(const RunRecord& r) {
       .integer("frames_written", r.frames_written)
       .integer("frames", r.frames)
       .str("formats", join(r.formats))
+      .boolean("compress", r.compress)
+      .boolean("grid", r.grid)
       .object("seconds", seconds)
       .str("scene_hash", hash_hex(r.scene_hash))
       .str("scene", r.scene_text);

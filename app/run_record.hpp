@@ -13,6 +13,7 @@ struct RunRecord {
   std::string scene_text;          // the resolved scene (scene.toml)
   std::uint64_t scene_hash = 0;    // fnv1a64(scene_text)
   std::vector<std::string> formats;
+  bool compress = false, grid = false;  // --compress, --grid
   int threads = 0;
   // ISO 8601 UTC, of this invocation (a resumed run's is the resume's);
   // ended empty while running.

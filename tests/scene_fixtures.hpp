@@ -36,7 +36,8 @@ radius = 0.1
 height = 0.2
 )";
 
-// Every key set, 2D: a disk, a box and an orifice.
+// Every key set, 2D: a disk, a box with its own material, a polygon, a spout
+// and an orifice.
 inline const std::string kFull2D = R"(dimension = 2
 seed = 42
 gravity = [1.5, -9.0]
@@ -79,6 +80,22 @@ velocity = [1.0, -0.5]
 shape = "box"
 min = [1.0, 0.0]
 max = [2.0, 0.5]
+density = 2650
+mu = 0.7
+cohesion = 5.5
+cohesion_decay = 0.25
+mu_i = { delta_mu = 0.2, I0 = 0.4, grain_diameter = 5e-4 }
+[[sand]]
+shape = "polygon"
+vertices = [[0.1, 0.8], [0.4, 0.8], [0.25, 0.95]]
+[[spout]]
+center = [1.5, 0.8]
+radius = 0.05
+velocity = [0.0, -2.0]
+start = 0.1
+stop = 0.5
+particles_per_cell = 3
+jitter = 0.25
 )";
 
 inline std::string replace(std::string s, const std::string& from, const std::string& to) {
@@ -145,6 +162,31 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
     EXPECT_EQ(p.particles_per_cell, q.particles_per_cell);
     EXPECT_EQ(p.jitter, q.jitter);
     EXPECT_EQ(p.velocity, q.velocity);
+    EXPECT_EQ(p.vertices, q.vertices);
+    EXPECT_EQ(p.file_path, q.file_path);
+    EXPECT_EQ(p.scale, q.scale);
+    EXPECT_EQ(p.translate, q.translate);
+    EXPECT_EQ(p.material.density, q.material.density);
+    EXPECT_EQ(p.material.mu, q.material.mu);
+    EXPECT_EQ(p.material.cohesion, q.material.cohesion);
+    EXPECT_EQ(p.material.cohesion_decay, q.material.cohesion_decay);
+    ASSERT_EQ(p.material.mu_i.has_value(), q.material.mu_i.has_value());
+    if (p.material.mu_i) {
+      EXPECT_EQ(p.material.mu_i->delta_mu, q.material.mu_i->delta_mu);
+      EXPECT_EQ(p.material.mu_i->I0, q.material.mu_i->I0);
+      EXPECT_EQ(p.material.mu_i->grain_diameter, q.material.mu_i->grain_diameter);
+    }
+  }
+  ASSERT_EQ(a.spouts.size(), b.spouts.size());
+  for (std::size_t k = 0; k < a.spouts.size(); ++k) {
+    const SpoutConfig &p = a.spouts[k], &q = b.spouts[k];
+    EXPECT_EQ(p.center, q.center);
+    EXPECT_EQ(p.radius, q.radius);
+    EXPECT_EQ(p.velocity, q.velocity);
+    EXPECT_EQ(p.start, q.start);
+    EXPECT_EQ(p.stop, q.stop);
+    EXPECT_EQ(p.particles_per_cell, q.particles_per_cell);
+    EXPECT_EQ(p.jitter, q.jitter);
   }
 }
 

@@ -30,6 +30,7 @@ ParticleFrame sample(int d, std::size_t n) {
     for (int k = 0; k < f.stress_components(); ++k) f.stress.push_back(k);
     f.shear_rate.push_back(0.01 * p);
     f.id.push_back(static_cast<double>(p + 7));
+    f.material.push_back(static_cast<double>(p % 2 + 2));
   }
   return f;
 }
@@ -55,7 +56,7 @@ const char* const kHeaderTail =
     "property float x\nproperty float y\nproperty float z\n"
     "property double vx\nproperty double vy\nproperty double vz\n"
     "property double volume\nproperty double pressure\nproperty double phi\n"
-    "property double shear_rate\nproperty double id\n"
+    "property double shear_rate\nproperty double id\nproperty double material\n"
     "end_header\n";
 
 TEST(Ply, HeaderAndVertexBytes) {
@@ -83,7 +84,16 @@ TEST(Ply, HeaderAndVertexBytes) {
     EXPECT_EQ(read_le<double>(ply, dbl + 40), f.phi[p]);
     EXPECT_EQ(read_le<double>(ply, dbl + 48), f.shear_rate[p]);
     EXPECT_EQ(read_le<double>(ply, dbl + 56), 8.0);  // id of particle 1
+    EXPECT_EQ(read_le<double>(ply, dbl + 64), 3.0);  // its material
   }
+}
+
+TEST(Ply, MaterialDefaultsToZero) {
+  ParticleFrame f = sample(2, 3);
+  f.material.clear();  // a frame built without materials
+  const std::string ply = format_ply(f);
+  const std::size_t body = ply.find("end_header\n") + std::strlen("end_header\n");
+  EXPECT_EQ(read_le<double>(ply, body + kPlyVertexBytes - 8), 0.0);
 }
 
 TEST(Ply, EmptyFrame) {

@@ -241,6 +241,7 @@ Checkpoint tiny() {
   c.cohesion = {0.0, 5.0};
   c.inertial = {0.0, std::numeric_limits<double>::infinity()};
   c.id = {42, -1};
+  c.material = {0, 3};
   c.stress = {1, 2, 3, 4, 5, 6};
   c.phi = {0.6, 0.5};
   c.shear_rate = {0.0, 3.0};
@@ -265,6 +266,7 @@ TEST(Resume, CheckpointRoundTrip) {
   EXPECT_EQ(d.affine, c.affine);
   EXPECT_EQ(d.inertial, c.inertial);
   EXPECT_EQ(d.id, c.id);
+  EXPECT_EQ(d.material, c.material);
   EXPECT_EQ(d.warm_stress, c.warm_stress);
   // Every truncation is refused, whatever its length.
   for (std::size_t n = 0; n < bytes.size(); ++n)

@@ -5,6 +5,7 @@
 // reference documents are exactly the keys the parser accepts.
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,12 @@ TEST(SceneFile, EveryKey2D) {
   e.boundary.openings = {Opening{YMin, v(0.9, 0), v(1.1, 0)}};
   e.sand = {SandConfig{SandShape::Cylinder, {}, {}, v(0.5, 0.5), 0.25, 0, 3, 0.5, v(1, -0.5)},
             SandConfig{SandShape::Box, v(1, 0), v(2, 0.5)}};
+  e.sand[1].material = SandMaterial{2650, 0.7, 5.5, 0.25, MuIConfig{0.2, 0.4, 5e-4}};
+  SandConfig polygon;
+  polygon.shape = SandShape::Polygon;
+  polygon.vertices = {v(0.1, 0.8), v(0.4, 0.8), v(0.25, 0.95)};
+  e.sand.push_back(polygon);
+  e.spouts = {SpoutConfig{v(1.5, 0.8), 0.05, v(0, -2), 0.1, 0.5, 3, 0.25}};
   expect_same(parse_scene(kFull2D, "full.toml"), e);
 }
 
@@ -190,8 +197,11 @@ TEST(SceneFile, RandomDoublesRoundTripExactly) {
       x->material.mu_i->grain_diameter = 1e-3 * unit(rng) + 1e-12;
       x->solver.tolerance = unit(rng) * 0.5 + 1e-17;
       x->sand[0].jitter = unit(rng);
-      x->sand[0].radius = 0.1 * unit(rng) + 1e-9;
+      x->sand[0].radius = 0.1 * unit(rng) + 0.02;  // holds particles: not an error
       x->sand[0].velocity[1] = (unit(rng) - 0.5) * 1e5;
+      x->sand[0].material.density = 1e4 * unit(rng) + 1e-9;
+      x->sand.back().material.mu = 4 * unit(rng) + 1e-9;
+      x->sand.back().material.mu_i = MuIConfig{unit(rng), unit(rng) + 1e-9, 1e-3 * unit(rng) + 1e-12};
       expect_same(*x, parse_scene(scene_to_toml(*x), "r.toml"));
     }
   }
@@ -224,7 +234,13 @@ TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
   // The resolved scenes of a full 2D and a full 3D scene write every key
   // (faces explicitly, so not boundary.default); they parse back, so each is
   // accepted.
+  // A mesh needs a file: a tetrahedron.
+  const std::filesystem::path obj = std::filesystem::temp_directory_path() /
+                                    ("sablier_known_keys_" + std::to_string(::getpid()) + ".obj");
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
   const std::string full3d = kBase3D +
+                             "[[sand]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
+                             "\"\nscale = 0.1\ntranslate = [0.38, 0.02, 0.02]\n"
                              "[[sand]]\nshape = \"box\"\nmin = [0, 0, 0]\nmax = [0.1, 0.1, 0.1]\n"
                              "[[boundary.opening]]\nface = \"zmin\"\nmin = [0.1, 0.1, 0]\n"
                              "max = [0.2, 0.2, 0]\n[material]\n"
@@ -235,6 +251,7 @@ TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
     collect_keys(toml::parse(resolved), "", written);
     EXPECT_NO_THROW(parse_scene(resolved, "resolved.toml"));
   }
+  std::filesystem::remove(obj);
   EXPECT_EQ(written, known_set());
 }
 

@@ -30,6 +30,7 @@ ParticleFrame sample(int d, std::size_t n) {
     for (int k = 0; k < sc; ++k) f.stress.push_back(10.0 * k + p + 0.1);
     f.shear_rate.push_back(0.01 * p);
     f.id.push_back(static_cast<double>(p));
+    f.material.push_back(static_cast<double>(p % 3));
   }
   return f;
 }
@@ -53,23 +54,90 @@ void expect_same(const ParticleFrame& a, const ParticleFrame& b) {
   EXPECT_EQ(a.stress, b.stress);
   EXPECT_EQ(a.shear_rate, b.shear_rate);
   EXPECT_EQ(a.id, b.id);
+  EXPECT_EQ(a.material, b.material);
 }
 
+// Every array, both dimensions, raw and compressed, from an empty frame to
+// one whose arrays span several zlib blocks.
 TEST(Writers, VtpRoundTrip) {
   const fs::path dir = temp_dir("vtp");
-  for (int d : {2, 3}) {
-    for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(57)}) {
-      const ParticleFrame f = sample(d, n);
-      const std::string path = (dir / "f.vtp").string();
-      write_file_atomic(path, format_vtp(f));
-      const ParticleFrame g = parse_vtp(read_file(path), path);
-      if (n == 0) {
-        EXPECT_EQ(g.count, 0u);
-      } else {
-        expect_same(f, g);
+  constexpr std::size_t kBig = 3000;
+  static_assert(3 * 8 * kBig > kVtkZlibBlockBytes, "the big frame must span several blocks");
+  for (VtkCompression c : {VtkCompression::None, VtkCompression::Zlib})
+    for (int d : {2, 3})
+      for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(57), kBig}) {
+        SCOPED_TRACE(::testing::Message() << "zlib " << (c == VtkCompression::Zlib) << ", "
+                                          << d << "D, " << n << " particles");
+        const ParticleFrame f = sample(d, n);
+        const std::string path = (dir / "f.vtp").string();
+        const std::string vtp = format_vtp(f, c);
+        EXPECT_EQ(vtp.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos,
+                  c == VtkCompression::Zlib);
+        write_file_atomic(path, vtp);
+        const ParticleFrame g = parse_vtp(read_file(path), path);
+        if (n == 0) {
+          EXPECT_EQ(g.count, 0u);
+          EXPECT_EQ(g.time, f.time);
+          EXPECT_EQ(g.dimension, d);
+        } else {
+          expect_same(f, g);
+        }
       }
+}
+
+TEST(Writers, VtpCompressionShrinksRegularData) {
+  const ParticleFrame f = sample(3, 3000);
+  EXPECT_LT(format_vtp(f, VtkCompression::Zlib).size(), format_vtp(f).size() / 2);
+}
+
+TEST(Writers, DamagedVtpIsRefused) {
+  const ParticleFrame f = sample(2, 3000);
+  for (VtkCompression c : {VtkCompression::None, VtkCompression::Zlib}) {
+    const std::string vtp = format_vtp(f, c);
+    const std::size_t data = vtp.find("<AppendedData");
+    EXPECT_THROW(parse_vtp(vtp.substr(0, data + (vtp.size() - data) / 2), "cut.vtp"), IoError);
+    if (c == VtkCompression::Zlib) {
+      std::string bad = vtp;
+      for (std::size_t k = data + 400; k < data + 440; ++k) bad[k] = static_cast<char>(~bad[k]);
+      EXPECT_THROW(parse_vtp(bad, "flipped.vtp"), IoError);
     }
   }
+}
+
+GridFrame sample_grid(int d) {
+  GridFrame g;
+  g.dimension = d;
+  g.time = 0.375;
+  g.spacing = 1.0 / 48;
+  g.nodes = {5, 4, d == 3 ? 3 : 1};
+  const std::size_t n = g.node_count();
+  for (std::size_t i = 0; i < n; ++i) {
+    g.phi.push_back(0.6 * i / n);
+    for (int a = 0; a < d; ++a) g.velocity.push_back(0.1 * i - a / 3.0);
+    g.pressure.push_back(1234.5 / (i + 1));
+    g.active.push_back(i % 2);
+  }
+  return g;
+}
+
+TEST(Writers, VtiRoundTrip) {
+  for (VtkCompression c : {VtkCompression::None, VtkCompression::Zlib})
+    for (int d : {2, 3}) {
+      const GridFrame g = sample_grid(d);
+      const std::string vti = format_vti(g, c);
+      EXPECT_NE(vti.find(d == 2 ? "WholeExtent=\"0 4 0 3 0 0\"" : "WholeExtent=\"0 4 0 3 0 2\""),
+                std::string::npos);
+      EXPECT_NE(vti.find("Origin=\"0 0 0\""), std::string::npos);
+      const GridFrame h = parse_vti(vti, "g.vti");
+      EXPECT_EQ(h.dimension, d);
+      EXPECT_EQ(h.time, g.time);
+      EXPECT_EQ(h.spacing, g.spacing);
+      EXPECT_EQ(h.nodes, g.nodes);
+      EXPECT_EQ(h.phi, g.phi);
+      EXPECT_EQ(h.velocity, g.velocity);
+      EXPECT_EQ(h.pressure, g.pressure);
+      EXPECT_EQ(h.active, g.active);
+    }
 }
 
 TEST(Writers, CsvHeaderAndValues) {

@@ -19,6 +19,9 @@ struct Particles {
   std::vector<double> cohesion;   // current cohesion, Pa (decays with shear)
   std::vector<double> inertial;   // lagged inertial number I (mu(I) rheology)
   std::vector<std::int64_t> id;   // stable identity, for outputs
+  // Index into the material table (physics/material.hpp): the [[sand]]
+  // block the grain came from, or the [material] entry after them (spouts).
+  std::vector<std::int32_t> material;
   // Diagnostics of the last step, interpolated from the grid (outputs only).
   std::vector<SymVec<D>> stress;  // lambda(x_p), Pa per unit grain volume
   std::vector<double> phi;        // volume fraction
@@ -34,6 +37,7 @@ struct Particles {
     cohesion.resize(n);
     inertial.resize(n);
     id.resize(n);
+    material.resize(n);
     stress.resize(n);
     phi.resize(n);
     shear_rate.resize(n);
@@ -49,6 +53,7 @@ struct Particles {
     apply(cohesion, order);
     apply(inertial, order);
     apply(id, order);
+    apply(material, order);
     apply(stress, order);
     apply(phi, order);
     apply(shear_rate, order);

@@ -30,6 +30,7 @@ void for_each_array(C& c, F&& f) {
   f(c.cohesion, 1, n);
   f(c.inertial, 1, n);
   f(c.id, 1, n);
+  f(c.material, 1, n);
   f(c.stress, s, n);
   f(c.phi, 1, n);
   f(c.shear_rate, 1, n);

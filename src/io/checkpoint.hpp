@@ -24,7 +24,8 @@ struct CheckpointError : IoError {
 };
 
 struct Checkpoint {
-  static constexpr std::uint32_t kFormatVersion = 1;
+  // 2: the per-particle material index (several materials per scene).
+  static constexpr std::uint32_t kFormatVersion = 2;
 
   int dimension = 2;
   std::uint64_t scene_hash = 0;  // fnv1a64 of the resolved scene text
@@ -37,10 +38,11 @@ struct Checkpoint {
   std::uint64_t particles = 0;
   std::uint64_t nodes = 0;  // grid nodes, ghosts included
 
-  // Per particle, interleaved: D, D, D*D, 1, 1, 1, 1, S, 1, 1 values
+  // Per particle, interleaved: D, D, D*D, 1, 1, 1, 1, 1, S, 1, 1 values
   // (S = D(D+1)/2), as in core/particles.hpp.
   std::vector<double> position, velocity, affine, volume, cohesion, inertial;
   std::vector<std::int64_t> id;
+  std::vector<std::int64_t> material;  // index into the scene's material table
   std::vector<double> stress, phi, shear_rate;
   // Per node, S values: last step's stresses, the next solve's warm start.
   std::vector<double> warm_stress;

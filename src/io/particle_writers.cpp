@@ -3,39 +3,12 @@
 #include <fmt/format.h>
 
 #include <cstdint>
-#include <cstring>
-#include <map>
 
+#include "io/vtk_xml.hpp"
 #include "io/writers.hpp"
 
 namespace sablier {
 namespace {
-
-// Appended-data blocks of a VTK XML file: each is a UInt64 byte count then
-// raw little-endian values; arrays refer to their block by byte offset.
-class Appended {
- public:
-  template <class T>
-  std::size_t add(const std::vector<T>& values) {
-    const std::size_t offset = data_.size();
-    const std::uint64_t bytes = values.size() * sizeof(T);
-    append(&bytes, sizeof bytes);
-    if (bytes) append(values.data(), bytes);
-    return offset;
-  }
-  const std::string& data() const { return data_; }
-
- private:
-  void append(const void* p, std::size_t n) { data_.append(static_cast<const char*>(p), n); }
-  std::string data_;
-};
-
-std::string array_tag(const char* type, const std::string& name, int components,
-                      std::size_t offset) {
-  return fmt::format(
-      R"(<DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)",
-      type, name, components, offset);
-}
 
 // 3-component vectors from d-component interleaved ones (z = 0 in 2D).
 std::vector<double> as_3d(const std::vector<double>& v, int d, std::size_t n) {
@@ -65,43 +38,44 @@ std::vector<double> as_tensor9(const ParticleFrame& f) {
 
 }  // namespace
 
-std::string format_vtp(const ParticleFrame& f) {
+std::string format_vtp(const ParticleFrame& f, VtkCompression compression) {
   const std::size_t n = f.count;
-  Appended app;
+  VtkAppended app(compression);
   std::string field, point;
-  field += array_tag("Float64", "TIME", 1, app.add(std::vector<double>{f.time}));
-  field += array_tag("Int32", "DIMENSION", 1, app.add(std::vector<std::int32_t>{f.dimension}));
+  field += vtk_field_tag("Float64", "TIME", 1, app.add(std::vector<double>{f.time}));
+  field += vtk_field_tag("Int32", "DIMENSION", 1, app.add(std::vector<std::int32_t>{f.dimension}));
   const auto scalar = [&](const char* name, const std::vector<double>& v) {
-    if (v.size() == n && n > 0) point += array_tag("Float64", name, 1, app.add(v));
+    if (v.size() == n && n > 0) point += vtk_array_tag("Float64", name, 1, app.add(v));
   };
-  point += array_tag("Float64", "velocity", 3, app.add(as_3d(f.velocity, f.dimension, n)));
+  point += vtk_array_tag("Float64", "velocity", 3, app.add(as_3d(f.velocity, f.dimension, n)));
   scalar("volume", f.volume);
   scalar("pressure", f.pressure);
   scalar("phi", f.phi);
-  point += array_tag("Float64", "stress", 9, app.add(as_tensor9(f)));
+  point += vtk_array_tag("Float64", "stress", 9, app.add(as_tensor9(f)));
   scalar("shear_rate", f.shear_rate);
+  // Integers, so that ParaView colours them by category and selects exactly.
   if (f.id.size() == n) {
     std::vector<std::int64_t> id(f.id.begin(), f.id.end());
-    point += array_tag("Int64", "id", 1, app.add(id));
+    point += vtk_array_tag("Int64", "id", 1, app.add(id));
+  }
+  if (f.material.size() == n) {
+    std::vector<std::int32_t> material(f.material.begin(), f.material.end());
+    point += vtk_array_tag("Int32", "material", 1, app.add(material));
   }
   const std::string points =
-      array_tag("Float64", "Points", 3, app.add(as_3d(f.position, f.dimension, n)));
+      vtk_array_tag("Float64", "Points", 3, app.add(as_3d(f.position, f.dimension, n)));
   std::vector<std::int64_t> conn(n), offs(n);
   for (std::size_t p = 0; p < n; ++p) conn[p] = static_cast<std::int64_t>(p), offs[p] = p + 1;
-  const std::string verts = array_tag("Int64", "connectivity", 1, app.add(conn)) +
-                            array_tag("Int64", "offsets", 1, app.add(offs));
-  std::string out = fmt::format(
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n<PolyData>\n<FieldData>{}</FieldData>\n"
-      "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" "
-      "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<PointData>{}</PointData>\n"
-      "<Points>{}</Points>\n<Verts>{}</Verts>\n</Piece>\n</PolyData>\n"
-      "<AppendedData encoding=\"raw\">\n_",
-      field, n, n, point, points, verts);
-  out += app.data();
-  out += "\n</AppendedData>\n</VTKFile>\n";
-  return out;
+  const std::string verts = vtk_array_tag("Int64", "connectivity", 1, app.add(conn)) +
+                            vtk_array_tag("Int64", "offsets", 1, app.add(offs));
+  return vtk_file_open("PolyData", compression) +
+         fmt::format(
+             "<PolyData>\n<FieldData>{}</FieldData>\n"
+             "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" "
+             "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<PointData>{}</PointData>\n"
+             "<Points>{}</Points>\n<Verts>{}</Verts>\n</Piece>\n</PolyData>\n",
+             field, n, n, point, points, verts) +
+         vtk_file_close(app);
 }
 
 std::string format_particle_csv(const ParticleFrame& f) {
@@ -131,73 +105,36 @@ std::string format_pvd(const std::vector<SeriesEntry>& entries) {
   return out + "</Collection>\n</VTKFile>\n";
 }
 
-namespace {
-
-std::string attribute(const std::string& tag, const std::string& key) {
-  const std::size_t k = tag.find(" " + key + "=\"");
-  if (k == std::string::npos) return "";
-  const std::size_t start = k + key.size() + 3;
-  return tag.substr(start, tag.find('"', start) - start);
-}
-
-}  // namespace
-
 ParticleFrame parse_vtp(const std::string& s, const std::string& source) {
-  const auto fail = [&](const std::string& why) { return IoError(source + ": " + why); };
-  const std::size_t app = s.find("<AppendedData encoding=\"raw\">");
-  if (app == std::string::npos) throw fail("no raw appended data");
-  const std::size_t base = s.find('_', app) + 1;
-  // Arrays by name: (type, components, values as doubles).
-  std::map<std::string, std::vector<double>> arrays;
-  for (std::size_t pos = s.find("<DataArray"); pos < app; pos = s.find("<DataArray", pos + 1)) {
-    const std::string tag = s.substr(pos, s.find('>', pos) - pos);
-    const std::string type = attribute(tag, "type");
-    const std::size_t offset = std::stoull(attribute(tag, "offset"));
-    std::uint64_t bytes = 0;
-    if (base + offset + 8 > s.size()) throw fail("truncated appended data");
-    std::memcpy(&bytes, s.data() + base + offset, 8);
-    const char* data = s.data() + base + offset + 8;
-    if (base + offset + 8 + bytes > s.size()) throw fail("truncated appended data");
-    std::vector<double>& v = arrays[attribute(tag, "Name")];
-    const std::size_t size = type == "Int32" ? 4 : 8;
-    v.resize(bytes / size);
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      if (type == "Float64") {
-        std::memcpy(&v[k], data + 8 * k, 8);
-      } else if (type == "Int64") {
-        std::int64_t x;
-        std::memcpy(&x, data + 8 * k, 8);
-        v[k] = static_cast<double>(x);
-      } else if (type == "Int32") {
-        std::int32_t x;
-        std::memcpy(&x, data + 4 * k, 4);
-        v[k] = x;
-      } else {
-        throw fail("unsupported type " + type);
-      }
-    }
-  }
+  std::map<std::string, VtkArray> arrays = read_vtk_arrays(s, source);
   for (const char* name : {"TIME", "DIMENSION", "Points", "velocity", "stress"})
-    if (!arrays.count(name)) throw fail(std::string("missing array ") + name);
+    if (!arrays.count(name)) throw IoError(source + ": missing array " + name);
+  const auto values = [&](const char* name) -> std::vector<double>& {
+    return arrays[name].values;
+  };
   ParticleFrame f;
-  f.time = arrays["TIME"].at(0);
-  f.dimension = static_cast<int>(arrays["DIMENSION"].at(0));
+  f.time = values("TIME").at(0);
+  f.dimension = static_cast<int>(values("DIMENSION").at(0));
   const int d = f.dimension;
-  f.count = arrays["Points"].size() / 3;
+  if (d != 2 && d != 3) throw IoError(source + ": dimension is not 2 or 3");
+  f.count = values("Points").size() / 3;
+  if (values("velocity").size() != 3 * f.count || values("stress").size() != 9 * f.count)
+    throw IoError(source + ": arrays of different lengths");
   for (std::size_t p = 0; p < f.count; ++p)
     for (int a = 0; a < d; ++a) {
-      f.position.push_back(arrays["Points"][3 * p + a]);
-      f.velocity.push_back(arrays["velocity"][3 * p + a]);
+      f.position.push_back(values("Points")[3 * p + a]);
+      f.velocity.push_back(values("velocity")[3 * p + a]);
     }
-  f.volume = arrays["volume"];
-  f.pressure = arrays["pressure"];
-  f.phi = arrays["phi"];
-  f.shear_rate = arrays["shear_rate"];
-  f.id = arrays["id"];
+  f.volume = values("volume");
+  f.pressure = values("pressure");
+  f.phi = values("phi");
+  f.shear_rate = values("shear_rate");
+  f.id = values("id");
+  f.material = values("material");
   const int idx2[] = {0, 4, 1}, idx3[] = {0, 4, 8, 1, 2, 5};
   for (std::size_t p = 0; p < f.count; ++p)
     for (int k = 0; k < f.stress_components(); ++k)
-      f.stress.push_back(arrays["stress"][9 * p + (d == 2 ? idx2[k] : idx3[k])]);
+      f.stress.push_back(values("stress")[9 * p + (d == 2 ? idx2[k] : idx3[k])]);
   return f;
 }
 

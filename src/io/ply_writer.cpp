@@ -10,8 +10,8 @@
 namespace sablier {
 
 namespace {
-const char* const kPlyProperties[] = {"vx",       "vy",  "vz",         "volume",
-                                      "pressure", "phi", "shear_rate", "id"};
+const char* const kPlyProperties[] = {"vx",  "vy",         "vz", "volume",  "pressure",
+                                      "phi", "shear_rate", "id", "material"};
 }  // namespace
 
 std::string format_ply(const ParticleFrame& f) {
@@ -35,6 +35,8 @@ std::string format_ply(const ParticleFrame& f) {
     out.put(f.phi[p]);
     out.put(f.shear_rate[p]);
     out.put(f.id[p]);
+    // Frames built by hand (tests, tools) may leave the material out.
+    out.put(f.material.size() == n ? f.material[p] : 0.0);
   }
   return std::move(out.data());
 }

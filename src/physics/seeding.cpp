@@ -1,7 +1,10 @@
 // Filling [[sand]] regions with particles (METHOD.md section 2, step 1).
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "core/mesh.hpp"
+#include "physics/seeding.hpp"
 #include "physics/simulation.hpp"
 
 namespace sablier {
@@ -11,15 +14,43 @@ namespace {
 // libraries (std::uniform_real_distribution is not), so seeds reproduce.
 inline double unit_random(std::mt19937_64& rng) { return (rng() >> 11) * 0x1.0p-53; }
 
+// Winding number of a closed polygon around x (2D): nonzero inside, for
+// either orientation (Sunday's crossing rule; no trigonometry).
+int polygon_winding(const std::vector<Vec3d>& v, double x, double y) {
+  int w = 0;
+  for (std::size_t i = 0, n = v.size(); i < n; ++i) {
+    const Vec3d& a = v[i];
+    const Vec3d& b = v[(i + 1) % n];
+    const double side = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
+    if (a[1] <= y) {
+      if (b[1] > y && side > 0.0) ++w;  // upward crossing, x left of the edge
+    } else if (b[1] <= y && side < 0.0) {
+      --w;  // downward crossing, x right of the edge
+    }
+  }
+  return w;
+}
+
 template <int D>
 bool inside(const SandConfig& s, const Vec<D>& x) {
-  if (s.shape == SandShape::Box) {
-    for (int a = 0; a < D; ++a)
-      if (x[a] < s.min[a] || x[a] >= s.max[a]) return false;
-    return true;
+  double r2 = 0.0;
+  switch (s.shape) {
+    case SandShape::Box:
+      for (int a = 0; a < D; ++a)
+        if (x[a] < s.min[a] || x[a] >= s.max[a]) return false;
+      return true;
+    case SandShape::Sphere:
+      for (int a = 0; a < D; ++a) r2 += (x[a] - s.center[a]) * (x[a] - s.center[a]);
+      return r2 < s.radius * s.radius;
+    case SandShape::Polygon:
+      return polygon_winding(s.vertices, x[0], x[1]) != 0;
+    case SandShape::Mesh:
+      if constexpr (D == 3) return s.mesh->contains({x[0], x[1], x[2]});
+      return false;
+    case SandShape::Cylinder:
+      break;
   }
   // Disk (2D) or vertical cylinder (3D, axis along z from center[2] to + height).
-  double r2 = 0.0;
   for (int a = 0; a < 2; ++a) r2 += (x[a] - s.center[a]) * (x[a] - s.center[a]);
   if (r2 >= s.radius * s.radius) return false;
   if constexpr (D == 3) return x[2] >= s.center[2] && x[2] < s.center[2] + s.height;
@@ -32,7 +63,16 @@ void region_bounds(const SandConfig& s, Vec<D>& lo, Vec<D>& hi) {
     if (s.shape == SandShape::Box) {
       lo[a] = s.min[a];
       hi[a] = s.max[a];
-    } else if (a < 2) {
+    } else if (s.shape == SandShape::Polygon) {
+      lo[a] = hi[a] = s.vertices[0][a];
+      for (const Vec3d& v : s.vertices) {
+        lo[a] = std::min(lo[a], v[a]);
+        hi[a] = std::max(hi[a], v[a]);
+      }
+    } else if (s.shape == SandShape::Mesh) {
+      lo[a] = s.mesh->lower()[a];
+      hi[a] = s.mesh->upper()[a];
+    } else if (a < 2 || s.shape == SandShape::Sphere) {
       lo[a] = s.center[a] - s.radius;
       hi[a] = s.center[a] + s.radius;
     } else {
@@ -45,7 +85,8 @@ void region_bounds(const SandConfig& s, Vec<D>& lo, Vec<D>& hi) {
 }  // namespace
 
 template <int D>
-Particles<D> seed_particles(const SceneConfig& scene) {
+Particles<D> seed_particles(const SceneConfig& scene, std::vector<std::size_t>* region_counts) {
+  if (region_counts) region_counts->assign(scene.sand.size(), 0);
   const double h = scene.cell_size();
   const double phi_max = scene.material.phi_max;
   std::mt19937_64 rng(scene.seed);
@@ -55,6 +96,8 @@ Particles<D> seed_particles(const SceneConfig& scene) {
     const int n = s.particles_per_cell;
     const double spacing = h / n;
     const double vp = phi_max * std::pow(spacing, D);
+    // Material index r: the block's entry of the material table (material.hpp).
+    const double cohesion = sand_material(scene, r).cohesion;
     Vec<D> lo, hi;
     region_bounds<D>(s, lo, hi);
     // Sub-cell lattice points k spacing + spacing/2 covering the region.
@@ -84,18 +127,30 @@ Particles<D> seed_particles(const SceneConfig& scene) {
       for (int a = 0; a < D; ++a) p.velocity[k][a] = s.velocity[a];
       p.affine[k].setZero();
       p.volume[k] = vp;
-      p.cohesion[k] = scene.material.cohesion;
+      p.cohesion[k] = cohesion;
+      p.material[k] = static_cast<std::int32_t>(r);
       p.inertial[k] = 0.0;
       p.id[k] = static_cast<std::int64_t>(k);
       p.stress[k].setZero();
       p.phi[k] = phi_max;
       p.shear_rate[k] = 0.0;
+      if (region_counts) ++(*region_counts)[r];
     }
   }
   return p;
 }
 
-template Particles<2> seed_particles<2>(const SceneConfig&);
-template Particles<3> seed_particles<3>(const SceneConfig&);
+template Particles<2> seed_particles<2>(const SceneConfig&, std::vector<std::size_t>*);
+template Particles<3> seed_particles<3>(const SceneConfig&, std::vector<std::size_t>*);
+
+std::vector<std::size_t> seeded_per_region(const SceneConfig& scene) {
+  std::vector<std::size_t> counts;
+  if (scene.dimension == 2) {
+    seed_particles<2>(scene, &counts);
+  } else {
+    seed_particles<3>(scene, &counts);
+  }
+  return counts;
+}
 
 }  // namespace sablier

@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
+#include "physics/emission.hpp"
 #include "physics/shape.hpp"
 #include "physics/viscosity.hpp"
 
@@ -33,10 +36,17 @@ Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
     : scene_(scene),
       grid_(grid_cells<D>(scene), scene.cell_size()),
       particles_(std::move(particles)),
-      rho_(scene.material.density),
-      phi_max_(scene.material.phi_max) {
+      rho0_(scene.material.density),
+      phi_max_(scene.material.phi_max),
+      materials_(material_table(scene)) {
   for (int a = 0; a < D; ++a) gravity_[a] = scene.gravity[a];
+  // The transfers index the table without checks.
+  for (const std::int32_t k : particles_.material)
+    if (k < 0 || static_cast<std::size_t>(k) >= materials_.size())
+      throw std::invalid_argument("particle material " + std::to_string(k) + " of " +
+                                  std::to_string(materials_.size()));
   const std::int64_t nodes = grid_.node_count();
+  node_grain_volume_.assign(nodes, 0.0);
   node_mass_.assign(nodes, 0.0);
   node_momentum_.assign(nodes, Vec<D>::Zero());
   row_of_node_.assign(nodes, -1);
@@ -90,7 +100,7 @@ void Simulation<D>::build_rows(double dt) {
   for (int j = 0; j < rows; ++j) {
     const std::int64_t node = P.node[j];
     const double vj = grid_.node_volume(grid_.node_coords(node));
-    const double phi_j = node_mass_[node];
+    const double phi_j = node_grain_volume_[node];
     P.volume[j] = vj;
     const double room = phi_max_ * vj - phi_j;
     P.k[j] = (room > 0.0 ? room : kOverfullRelaxation * room) * inv_trace_dt;
@@ -103,8 +113,9 @@ void Simulation<D>::build_rows(double dt) {
   }
 }
 
-// u_f = (M + A)^{-1} l (METHOD.md step 3) and the inverse masses; a
-// division per node without viscosity, conjugate gradients with it.
+// u_f = (M + A)^{-1} l (METHOD.md step 3) and the inverse masses dt / m_i,
+// m_i = rho_0 node_mass_ = sum_p rho_p V_p N_i; a division per node without
+// viscosity, conjugate gradients with it.
 template <int D>
 int Simulation<D>::unconstrained_velocity(double dt) {
   ConeProblem<D>& P = problem_;
@@ -114,7 +125,7 @@ int Simulation<D>::unconstrained_velocity(double dt) {
     const double m = node_mass_[i];
     if (m > 0.0) {
       P.velocity[i] = (node_momentum_[i] / m + dt * gravity_).cwiseProduct(free_mask_[i]);
-      P.inv_mass[i] = free_mask_[i] * (dt / (rho_ * m));
+      P.inv_mass[i] = free_mask_[i] * (dt / (rho0_ * m));
     } else {
       P.velocity[i].setZero();
       P.inv_mass[i].setZero();
@@ -122,7 +133,7 @@ int Simulation<D>::unconstrained_velocity(double dt) {
   }
   if (scene_.material.viscosity <= 0.0) return 0;
   ViscousSystem<D> sys{grid_,          particles_,        cell_start_, cells_by_parity_,
-                       node_mass_,     free_mask_,        rho_ / dt,   scene_.material.viscosity};
+                       node_mass_,     free_mask_,        rho0_ / dt,  scene_.material.viscosity};
   return solve_viscous(sys, P.velocity);
 }
 
@@ -156,16 +167,28 @@ StepInfo Simulation<D>::step(double dt) {
   info.timings.advection = seconds_since(t0);
 
   info.active_nodes = problem_.rows();
+  const double start = time_;
   time_ += dt;
   ++steps_;
+  emit_from_spouts(start);
   return info;
+}
+
+// The source hook, at the end of a step: the layers the spouts emitted
+// between `start` and now (emission.hpp), a function of the clock alone so
+// that a resumed run emits the same. Appended unsorted: the next step's
+// sort (stable) puts them in place, as the constructor's does on a resume.
+template <int D>
+void Simulation<D>::emit_from_spouts(double start) {
+  if (!scene_.spouts.empty()) emit_spout_particles<D>(scene_, start, time_, particles_);
 }
 
 template <int D>
 double Simulation<D>::adaptive_dt(double remaining) const {
   // Travel (v + g dt) dt <= cfl h, solved for dt.
   const double reach = scene_.time.cfl * grid_.h();
-  const double v = max_speed();
+  // Grains a spout is about to emit move too (emission.hpp).
+  const double v = std::max(max_speed(), open_spout_speed(scene_, time_));
   const double g = gravity_.norm();
   double dt = remaining;
   if (g > 0.0) {
@@ -178,20 +201,22 @@ double Simulation<D>::adaptive_dt(double remaining) const {
   return remaining / std::max(1.0, n);
 }
 
+// The energies sum (rho_p / rho_0) V_p terms and multiply by rho_0 once, as
+// the grid's masses do (material.hpp): exact with a single material.
 template <int D>
 double Simulation<D>::kinetic_energy() const {
   double e = 0.0;
   for (std::size_t p = 0; p < particles_.size(); ++p)
-    e += particles_.volume[p] * particles_.velocity[p].squaredNorm();
-  return 0.5 * rho_ * e;
+    e += mass_volume(p) * particles_.velocity[p].squaredNorm();
+  return 0.5 * rho0_ * e;
 }
 
 template <int D>
 double Simulation<D>::potential_energy() const {
   double e = 0.0;
   for (std::size_t p = 0; p < particles_.size(); ++p)
-    e -= particles_.volume[p] * gravity_.dot(particles_.position[p]);
-  return rho_ * e;
+    e -= mass_volume(p) * gravity_.dot(particles_.position[p]);
+  return rho0_ * e;
 }
 
 template <int D>
@@ -208,10 +233,10 @@ double Simulation<D>::affine_energy() const {
     for (int c = 0; c < NC; ++c) {
       Vec<D> offset;
       for (int a = 0; a < D; ++a) offset[a] = (((c >> a) & 1) - local[a]) * h;
-      e += particles_.volume[p] * s.w[c] * (particles_.affine[p] * offset).squaredNorm();
+      e += mass_volume(p) * s.w[c] * (particles_.affine[p] * offset).squaredNorm();
     }
   }
-  return 0.5 * rho_ * e;
+  return 0.5 * rho0_ * e;
 }
 
 template <int D>
@@ -224,13 +249,13 @@ double Simulation<D>::max_speed() const {
 template <int D>
 double Simulation<D>::grain_mass() const {
   double m = 0.0;
-  for (double v : particles_.volume) m += v;
-  return rho_ * m;
+  for (std::size_t p = 0; p < particles_.size(); ++p) m += mass_volume(p);
+  return rho0_ * m;
 }
 
 template <int D>
 Mat<D> Simulation<D>::row_bulk_stress(int j) const {
-  const double phi = node_mass_[problem_.node[j]] / problem_.volume[j];
+  const double phi = node_grain_volume_[problem_.node[j]] / problem_.volume[j];
   return phi * from_sym<D>(problem_.lambda[j]);
 }
 
@@ -250,7 +275,7 @@ ParticleFrame Simulation<D>::frame() const {
   f.stress.resize(n * SD);
   f.shear_rate = particles_.shear_rate;
   f.id.resize(n);
-  f.material.assign(n, 0.0);  // one material per scene for now
+  f.material.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     for (int a = 0; a < D; ++a) {
       f.position[p * D + a] = particles_.position[p][a];
@@ -262,6 +287,7 @@ ParticleFrame Simulation<D>::frame() const {
     const SymVec<D> s = phi * cartesian_components<D>(particles_.stress[p]);
     for (int k = 0; k < SD; ++k) f.stress[p * SD + k] = s[k];
     f.id[p] = static_cast<double>(particles_.id[p]);
+    f.material[p] = static_cast<double>(particles_.material[p]);
   }
   return f;
 }

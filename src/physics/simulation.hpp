@@ -7,7 +7,9 @@
 
 #include "core/grid.hpp"
 #include "core/particles.hpp"
+#include "io/grid_frame.hpp"
 #include "io/particle_frame.hpp"
+#include "physics/material.hpp"
 #include "scene/scene.hpp"
 #include "solver/cone_problem.hpp"
 
@@ -36,8 +38,10 @@ constexpr double kOverfullRelaxation = 0.1;
 
 // Particles created from the scene's [[sand]] regions (METHOD.md step 1:
 // n particles per cell and per axis, V_p = phi_max h^d / n^d).
+// `region_counts`, if given, receives the particles of each [[sand]] block.
 template <int D>
-Particles<D> seed_particles(const SceneConfig& scene);
+Particles<D> seed_particles(const SceneConfig& scene,
+                            std::vector<std::size_t>* region_counts = nullptr);
 
 template <int D>
 class Simulation {
@@ -59,17 +63,20 @@ class Simulation {
   Particles<D>& particles() { return particles_; }
   const ConeProblem<D>& problem() const { return problem_; }
 
-  // Diagnostics (SI), from the particles.
-  double kinetic_energy() const;    // sum 1/2 rho V_p |u_p|^2
-  double potential_energy() const;  // -sum rho V_p g.x_p (zero at the origin)
-  double affine_energy() const;     // APIC: 1/2 rho sum_p V_p sum_i N_i |B_p (x_i - x_p)|^2
+  const std::vector<Material>& materials() const { return materials_; }
+
+  // Diagnostics (SI), from the particles, each with its own density rho_p.
+  double kinetic_energy() const;    // sum 1/2 rho_p V_p |u_p|^2
+  double potential_energy() const;  // -sum rho_p V_p g.x_p (zero at the origin)
+  double affine_energy() const;     // APIC: 1/2 sum_p rho_p V_p sum_i N_i |B_p (x_i - x_p)|^2
   double max_speed() const;
-  double grain_mass() const;
+  double grain_mass() const;        // sum rho_p V_p
 
   // Bulk stress phi lambda of row j, Cartesian tensor (compression positive).
   Mat<D> row_bulk_stress(int j) const;
 
   ParticleFrame frame() const;
+  GridFrame grid_frame() const;  // grid nodes for the .vti writer (physics/grid_frame.cpp)
 
   // Checkpointing (app/checkpoint_state.hpp). Besides the scene and the
   // particles, the future depends on the clock and on the warm start of the
@@ -89,14 +96,20 @@ class Simulation {
   void build_rows(double dt);
   int unconstrained_velocity(double dt);
   void transfer_to_particles(double dt);
+  void emit_from_spouts(double start);  // sources: particles entering during the step
   bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;
+  // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
+  double mass_volume(std::size_t p) const {
+    return materials_[particles_.material[p]].mass_ratio * particles_.volume[p];
+  }
 
   SceneConfig scene_;
   DenseGrid<D> grid_;
   Particles<D> particles_;
   double time_ = 0.0;
   std::int64_t steps_ = 0;
-  double rho_, phi_max_;
+  double rho0_, phi_max_;  // reference density rho_0 = [material].density (material.hpp)
+  std::vector<Material> materials_;  // one per [[sand]] block, by particles_.material
   Vec<D> gravity_;
 
   // Particles sorted by cell: particles of cell c are [cell_start_[c], cell_start_[c+1]).
@@ -105,8 +118,12 @@ class Simulation {
   std::array<std::vector<std::int64_t>, ipow(2, D)> cells_by_parity_;
 
   // Dense node fields (ghost-padded).
-  std::vector<double> node_mass_;     // m_i = Phi_i = sum_p V_p N_i, m^3
-  std::vector<Vec<D>> node_momentum_; // q_i, m^4/s
+  // Grain volume Phi_i = sum_p V_p N_i, m^3: the phi_max constraint and phi.
+  std::vector<double> node_grain_volume_;
+  // Mass in units of rho_0: m_i / rho_0 = sum_p (rho_p / rho_0) V_p N_i, m^3
+  // (equal to Phi_i when every grain has density rho_0).
+  std::vector<double> node_mass_;
+  std::vector<Vec<D>> node_momentum_; // q_i / rho_0, m^4/s
   std::vector<Vec<D>> free_mask_;     // 1 on free velocity components, 0 on constrained
   std::vector<int> row_of_node_;      // stress row index or -1
   std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start

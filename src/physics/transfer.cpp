@@ -47,6 +47,7 @@ void Simulation<D>::sort_particles() {
 template <int D>
 void Simulation<D>::transfer_to_grid(double /*dt*/) {
   constexpr int NC = ipow(2, D);
+  std::fill(node_grain_volume_.begin(), node_grain_volume_.end(), 0.0);
   std::fill(node_mass_.begin(), node_mass_.end(), 0.0);
   std::fill(node_momentum_.begin(), node_momentum_.end(), Vec<D>::Zero());
 
@@ -89,8 +90,11 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
 
   // Scatter, one cell parity at a time: cells of equal parity share no node,
   // so the sums are race-free and their order is fixed (bit-reproducible).
+  // Each particle brings its own material (material.hpp): its density to the
+  // mass and momentum, its friction to the row's phi-weighted mean; the
+  // grain volume Phi_i and the coupling vectors g_ji take V_p alone.
   const double h = grid_.h();
-  const MaterialConfig& mat = scene_.material;
+  const Material* mats = materials_.data();
   for (const auto& cells : cells_by_parity_) {
     const std::int64_t ncells = static_cast<std::int64_t>(cells.size());
 #pragma omp parallel for schedule(static)
@@ -104,19 +108,19 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
         const Vec<D>& x = particles_.position[p];
         const Vec<D> local = (x - origin) / h;
         const Q1Stencil<D> s = q1_stencil<D>(local, h);
+        const Material& mp = mats[particles_.material[p]];
         const double vp = particles_.volume[p];
-        double mu_p = mat.mu;
-        if (mat.mu_i) {
-          const double I = particles_.inertial[p];
-          mu_p += I > 0.0 ? mat.mu_i->delta_mu / (1.0 + mat.mu_i->I0 / I) : 0.0;
-        }
+        const double mass_p = mp.mass_ratio * vp;  // rho_p V_p / rho_0
+        const double mu_p = mp.friction(particles_.inertial[p]);
         for (int a = 0; a < NC; ++a) {
           const std::int64_t node = base + corner[a];
           const double m = vp * s.w[a];
+          const double mass = mass_p * s.w[a];
           Vec<D> offset;  // x_i - x_p
           for (int ax = 0; ax < D; ++ax) offset[ax] = (((a >> ax) & 1) - local[ax]) * h;
-          node_mass_[node] += m;
-          node_momentum_[node] += m * (particles_.velocity[p] + particles_.affine[p] * offset);
+          node_grain_volume_[node] += m;
+          node_mass_[node] += mass;
+          node_momentum_[node] += mass * (particles_.velocity[p] + particles_.affine[p] * offset);
           const int row = row_of_node_[node];
           auto& g = P.coupling[row];
           for (int b = 0; b < NC; ++b) g.col(corner_pair_slot<D>(a, b)) += m * s.grad[b];
@@ -148,7 +152,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
   const auto corner = grid_.corner_offsets();
   const double h = grid_.h();
   const auto& cells = grid_.cells();
-  const MaterialConfig& mat = scene_.material;
+  const Material* mats = materials_.data();
   const ConeProblem<D>& P = problem_;
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
@@ -171,7 +175,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
       grad.noalias() += ui * s.grad[a].transpose();
       const int row = row_of_node_[node];
       lambda += s.w[a] * P.lambda[row];
-      phi += s.w[a] * node_mass_[node] / P.volume[row];
+      phi += s.w[a] * node_grain_volume_[node] / P.volume[row];
     }
     if (!u.allFinite()) bad = std::min(bad, p);
     particles_.velocity[p] = u;
@@ -182,14 +186,17 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // rate for simple shear), used by mu(I) and by the cohesion decay.
     const double shear = 2.0 * deviatoric_norm<D>(to_sym<D>(grad));
     particles_.shear_rate[p] = shear;
-    if (mat.mu_i) {
-      // Lagged inertial number I = shear d / sqrt(P / rho), P the bulk pressure.
+    const Material& mp = mats[particles_.material[p]];
+    if (mp.has_mu_i) {
+      // Lagged inertial number I = shear d_p / sqrt(P / rho_p), P the bulk
+      // pressure, d_p and rho_p the particle's own grains.
       const double pressure = phi * trace_of<D>(lambda) / D;
       particles_.inertial[p] = pressure > 0.0
-                                   ? shear * mat.mu_i->grain_diameter / std::sqrt(pressure / rho_)
+                                   ? shear * mp.mu_i.grain_diameter / std::sqrt(pressure / mp.density)
                                    : std::numeric_limits<double>::infinity();
     }
-    if (mat.cohesion_decay > 0.0) particles_.cohesion[p] *= std::exp(-mat.cohesion_decay * shear * dt);
+    if (mp.cohesion_decay > 0.0)
+      particles_.cohesion[p] *= std::exp(-mp.cohesion_decay * shear * dt);
     // Advection and the domain's faces: a particle crossing a free face (or
     // an opening) is left outside and dropped at the next sort; on walls it
     // is put back just inside (it can only overshoot when cfl > 1).

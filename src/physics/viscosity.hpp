@@ -19,9 +19,9 @@ struct ViscousSystem {
   const Particles<D>& particles;  // sorted by cell
   const std::vector<std::int64_t>& cell_start;
   const std::array<std::vector<std::int64_t>, ipow(2, D)>& cells_by_parity;
-  const std::vector<double>& node_mass;  // m_i, m^3
+  const std::vector<double>& node_mass;  // m_i / rho_0, m^3 (per-particle densities summed in)
   const std::vector<Vec<D>>& free_mask;
-  double rho_over_dt;  // M_i = rho m_i / dt
+  double rho_over_dt;  // rho_0 / dt: M_i = rho_0 node_mass_i / dt = m_i / dt
   double viscosity;    // eta, Pa s
 };
 

@@ -4,7 +4,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -69,7 +72,22 @@ struct TimeConfig {
   double cfl = 1.0;  // adaptive: at most this many cells of travel per step
 };
 
-enum class SandShape { Box, Cylinder };  // "disk" in 2D is a Cylinder
+// A [[sand]] block's own material: each key set overrides [material], each
+// absent one inherits it. phi_max and viscosity have no per-block value: the
+// phi_max bound is a constraint on a node's total grain volume, whatever the
+// grains, and the viscosity a grid operator (docs/scenes.md).
+struct SandMaterial {
+  std::optional<double> density;         // kg/m^3
+  std::optional<double> mu;              // simple-shear friction coefficient
+  std::optional<double> cohesion;        // Pa
+  std::optional<double> cohesion_decay;  // per unit shear strain
+  std::optional<MuIConfig> mu_i;         // all three keys, when given
+};
+
+// "disk" in 2D is a Cylinder; Sphere is 3D only, Polygon 2D only, Mesh 3D only.
+enum class SandShape { Box, Cylinder, Sphere, Polygon, Mesh };
+
+class SolidMesh;  // core/mesh.hpp
 
 struct SandConfig {
   SandShape shape = SandShape::Box;
@@ -81,6 +99,31 @@ struct SandConfig {
   int particles_per_cell = 2;  // per axis
   double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
   Vec3d velocity{0, 0, 0};     // initial velocity, m/s
+  SandMaterial material{};     // overrides of [material] for this block's grains
+  // Polygon (2D): the corners in order, either orientation; z unused.
+  std::vector<Vec3d> vertices{};
+  // Mesh (3D): the file as given, its absolute path (relative paths are
+  // relative to the scene file's folder), the transform applied to its
+  // vertices (x -> scale x + translate), and the closed mesh, transformed.
+  std::string file{};
+  std::string file_path{};
+  double scale = 1.0;
+  Vec3d translate{0, 0, 0};
+  std::shared_ptr<const SolidMesh> mesh{};
+};
+
+// A [[spout]] block: grains pouring in through a cross-section (a segment
+// in 2D, a disk in 3D, centred on `center` and perpendicular to `velocity`)
+// at the spout's velocity, with volume fraction phi_max
+// (physics/emission.cpp).
+struct SpoutConfig {
+  Vec3d center{0, 0, 0};    // m
+  double radius = 0.0;      // m: half-width (2D) or radius (3D) of the cross-section
+  Vec3d velocity{0, 0, 0};  // m/s, nonzero
+  double start = 0.0;       // s
+  double stop = std::numeric_limits<double>::infinity();  // s; infinity = never
+  int particles_per_cell = 2;  // per axis
+  double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
 };
 
 struct SceneConfig {
@@ -94,6 +137,7 @@ struct SceneConfig {
   SolverConfig solver;
   BoundaryConfig boundary;
   std::vector<SandConfig> sand;
+  std::vector<SpoutConfig> spouts;
   std::uint64_t seed = 0;
 
   double cell_size() const { return size[0] / resolution[0]; }
@@ -111,6 +155,10 @@ SceneConfig parse_scene(const std::string& toml_text, const std::string& source,
 // The resolved scene (every key, defaults filled in) as TOML text; parsing it
 // back gives the same SceneConfig.
 std::string scene_to_toml(const SceneConfig& scene);
+
+// The material of [[sand]] block `block`: [material] with the block's
+// overrides applied (phi_max and viscosity are always [material]'s).
+MaterialConfig sand_material(const SceneConfig& scene, std::size_t block);
 
 // Every dotted key the parser accepts, as docs/scenes.md names them:
 // "material.mu", "material.mu_i.I0", "sand[].shape", "boundary.opening[].face".

@@ -16,6 +16,7 @@
 
 #include "scene/scene.hpp"
 #include "scene/scene_reader.hpp"
+#include "scene/scene_sources.hpp"
 
 namespace sablier {
 namespace {
@@ -25,8 +26,8 @@ using Names = std::vector<std::string>;
 
 const Names kFaces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
 const Names kBoundaryTypes{"stick", "slip", "free"};
-const Names kShapes2D{"box", "disk"};
-const Names kShapes3D{"box", "cylinder"};
+const Names kShapes2D{"box", "disk", "polygon"};
+const Names kShapes3D{"box", "cylinder", "sphere", "mesh"};
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Range positive() { return Range{0.0, kInf, true, false}; }
@@ -70,6 +71,18 @@ const std::vector<Field<MuIConfig>> kMuIFields{
     real("delta_mu", &MuIConfig::delta_mu, non_negative()),
     real("I0", &MuIConfig::I0, positive()),
     real("grain_diameter", &MuIConfig::grain_diameter, positive()),
+};
+// The [material] keys a [[sand]] block may override (SandMaterial); their
+// ranges are those of kMaterialFields.
+struct BlockField {
+  const char* key;
+  std::optional<double> SandMaterial::*member;
+};
+const std::vector<BlockField> kSandMaterialFields{
+    {"density", &SandMaterial::density},
+    {"mu", &SandMaterial::mu},
+    {"cohesion", &SandMaterial::cohesion},
+    {"cohesion_decay", &SandMaterial::cohesion_decay},
 };
 const std::vector<Field<SolverConfig>> kSolverFields{
     real("tolerance", &SolverConfig::tolerance, open(0, 1)),
@@ -152,23 +165,62 @@ void read_grid(TableReader g, SceneConfig& s) {
   g.reject_unknown();
 }
 
+// The mu_i table of [material] or of a [[sand]] block: all three keys.
+std::optional<MuIConfig> read_mu_i(TableReader& t) {
+  if (!t.has("mu_i")) return std::nullopt;
+  TableReader mi = t.child("mu_i");
+  MuIConfig c;
+  read_fields(mi, c, kMuIFields, true);
+  mi.reject_unknown();
+  return c;
+}
+
+void fail_cohesion_without_friction(TableReader& t, double cohesion) {
+  t.fail_at(t.node("cohesion"), "cohesion",
+            fmt::format("{} needs friction (the yield cone's apex is at -cohesion/mu); "
+                        "allowed: cohesion = 0 when mu = 0",
+                        cohesion));
+}
+
 void read_material(TableReader m, SceneConfig& s) {
   MaterialConfig& mat = s.material;
   read_fields(m, mat, kMaterialFields, false);
-  if (mat.cohesion > 0.0 && mat.mu <= 0.0)
-    m.fail_at(m.node("cohesion"), "cohesion",
-              fmt::format("{} needs friction (the yield cone's apex is at -cohesion/mu); "
-                          "allowed: cohesion = 0 when mu = 0",
-                          mat.cohesion));
-  mat.mu_i.reset();
-  if (m.has("mu_i")) {
-    TableReader mi = m.child("mu_i");
-    MuIConfig c;
-    read_fields(mi, c, kMuIFields, true);
-    mi.reject_unknown();
-    mat.mu_i = c;
-  }
+  if (mat.cohesion > 0.0 && mat.mu <= 0.0) fail_cohesion_without_friction(m, mat.cohesion);
+  mat.mu_i = read_mu_i(m);
   m.reject_unknown();
+}
+
+Range material_range(const char* key) {
+  for (const Field<MaterialConfig>& f : kMaterialFields)
+    if (std::strcmp(f.key, key) == 0) return f.range;
+  throw std::logic_error(std::string("no [material] key ") + key);
+}
+
+// A block's overrides of [material], checked like [material]'s own keys;
+// cohesion needs friction here too, whichever of the two the block sets.
+// [material] is read before [[sand]] (read_scene), so the inherited values
+// are known.
+SandMaterial read_sand_material(TableReader& t, const SceneConfig& s) {
+  reject_keys(t, {"phi_max", "viscosity"},
+              "scene-wide, not per block (docs/scenes.md); allowed: in [material]");
+  SandMaterial sm;
+  for (const BlockField& f : kSandMaterialFields) {
+    t.node(f.key);  // known even when absent: suggested for misspellings
+    if (t.has(f.key)) sm.*f.member = t.number(f.key, std::nullopt, material_range(f.key));
+  }
+  t.node("mu_i");
+  sm.mu_i = read_mu_i(t);
+  const double cohesion = sm.cohesion.value_or(s.material.cohesion);
+  const double mu = sm.mu.value_or(s.material.mu);
+  if (cohesion > 0.0 && mu <= 0.0) {
+    if (sm.cohesion) fail_cohesion_without_friction(t, cohesion);
+    t.fail_at(t.node("mu"), "mu",
+              fmt::format("{} leaves no friction for the cohesion {} of [material] (the yield "
+                          "cone's apex is at -cohesion/mu); allowed: mu > 0, or cohesion = 0 in "
+                          "this block",
+                          mu, cohesion));
+  }
+  return sm;
 }
 
 // The opening's tangential extent must lie on its face.
@@ -265,21 +317,26 @@ SandConfig read_sand(TableReader t, const SceneConfig& s) {
   const int d = s.dimension;
   SandConfig c;
   const std::string shape = dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D,
-                                             d == 2 ? Names{"cylinder"} : Names{"disk"}, d);
+                                             shapes_of_other_dimension(d), d);
+  reject_other_shape_keys(t, shape);
   if (shape == "box") {
     read_box(t, c, s);
-  } else {
+  } else if (shape == "disk" || shape == "cylinder") {
     read_round(t, c, s);
+  } else {
+    read_source_shape(t, shape, c, s);  // scene_sources.cpp
   }
   read_fields(t, c, kSandFields, false);
   c.velocity = t.vector("velocity", d, c.velocity, Range());
+  c.material = read_sand_material(t, s);
   t.reject_unknown();
   return c;
 }
 
 void read_all_sand(TableReader& root, SceneConfig& s) {
   const toml::array* list = root.array_of_tables("sand");
-  const std::string required = "at least one [[sand]] block";
+  const std::string required = "at least one [[sand]] block (or a [[spout]])";
+  if ((!list || list->empty()) && !s.spouts.empty()) return;  // all sand poured in
   if (!list) root.fail("sand", "missing; required: " + required);
   if (list->empty()) root.fail_at(root.node("sand"), "sand", "empty; required: " + required);
   for (std::size_t k = 0; k < list->size(); ++k)
@@ -299,7 +356,9 @@ SceneConfig read_scene(const toml::table& doc, const std::string& file, const Or
   read_material(root.child("material"), s);
   read_table(root.child("solver"), s.solver, kSolverFields);
   read_boundary(root.child("boundary"), s);
+  read_all_spouts(root, s);
   read_all_sand(root, s);
+  check_regions_seed(root, s);
   root.reject_unknown();
   return s;
 }
@@ -408,7 +467,21 @@ std::vector<std::string> known_scene_keys() {
   for (const char* k : {"shape", "min", "max", "center", "radius", "height", "velocity"})
     keys.push_back(std::string("sand[].") + k);
   add_keys(keys, "sand[].", kSandFields);
+  for (const std::string& k : source_scene_keys()) keys.push_back(k);
+  for (const BlockField& f : kSandMaterialFields) keys.push_back(std::string("sand[].") + f.key);
+  add_keys(keys, "sand[].mu_i.", kMuIFields);
   return keys;
+}
+
+MaterialConfig sand_material(const SceneConfig& scene, std::size_t block) {
+  MaterialConfig m = scene.material;
+  const SandMaterial& o = scene.sand.at(block).material;
+  m.density = o.density.value_or(m.density);
+  m.mu = o.mu.value_or(m.mu);
+  m.cohesion = o.cohesion.value_or(m.cohesion);
+  m.cohesion_decay = o.cohesion_decay.value_or(m.cohesion_decay);
+  if (o.mu_i) m.mu_i = o.mu_i;
+  return m;
 }
 
 SceneConfig parse_scene(const std::string& text, const std::string& source,

@@ -2,6 +2,10 @@
 // shortest representation that reads back to the same double.
 #include <fmt/format.h>
 
+#include <cmath>
+#include <optional>
+#include <utility>
+
 #include "scene/scene.hpp"
 
 namespace sablier {
@@ -26,6 +30,75 @@ std::string vecf(const Vec3d& v, int d) {
   return s + "]";
 }
 
+std::string mu_i_line(const MuIConfig& m) {
+  return fmt::format("mu_i = {{ delta_mu = {}, I0 = {}, grain_diameter = {} }}\n", num(m.delta_mu),
+                     num(m.I0), num(m.grain_diameter));
+}
+
+// Only the keys the block sets: an absent key inherits [material], so
+// writing the inherited value would change what a later --set of
+// [material] does to this block.
+std::string sand_material_lines(const SandMaterial& m) {
+  std::string out;
+  const std::pair<const char*, const std::optional<double>*> keys[] = {
+      {"density", &m.density},
+      {"mu", &m.mu},
+      {"cohesion", &m.cohesion},
+      {"cohesion_decay", &m.cohesion_decay}};
+  for (const auto& [key, value] : keys)
+    if (*value) out += fmt::format("{} = {}\n", key, num(**value));
+  if (m.mu_i) out += mu_i_line(*m.mu_i);
+  return out;
+}
+
+// A TOML basic string.
+std::string quoted(const std::string& text) {
+  std::string s = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') s += '\\';
+    s += c;
+  }
+  return s + "\"";
+}
+
+// A [[sand]] block's shape and geometric keys. A mesh's file is written as
+// the absolute path it was read from: the resolved scene lives in the run's
+// folder, not beside the scene file.
+std::string shape_lines(const SandConfig& c, int d) {
+  switch (c.shape) {
+    case SandShape::Box:
+      return fmt::format("shape = \"box\"\nmin = {}\nmax = {}\n", vecf(c.min, d), vecf(c.max, d));
+    case SandShape::Sphere:
+      return fmt::format("shape = \"sphere\"\ncenter = {}\nradius = {}\n", vecf(c.center, d),
+                         num(c.radius));
+    case SandShape::Polygon: {
+      std::string v;
+      for (const Vec3d& p : c.vertices) v += (v.empty() ? "" : ", ") + vecf(p, 2);
+      return fmt::format("shape = \"polygon\"\nvertices = [{}]\n", v);
+    }
+    case SandShape::Mesh:
+      return fmt::format("shape = \"mesh\"\nfile = {}\nscale = {}\ntranslate = {}\n",
+                         quoted(c.file_path), num(c.scale), vecf(c.translate, 3));
+    case SandShape::Cylinder:
+      break;
+  }
+  std::string out = fmt::format("shape = \"{}\"\ncenter = {}\nradius = {}\n",
+                                d == 2 ? "disk" : "cylinder", vecf(c.center, d), num(c.radius));
+  if (d == 3) out += fmt::format("height = {}\n", num(c.height));
+  return out;
+}
+
+std::string spout_lines(const SpoutConfig& p, int d) {
+  std::string out =
+      fmt::format("\n[[spout]]\ncenter = {}\nradius = {}\nvelocity = {}\nstart = {}\n",
+                  vecf(p.center, d), num(p.radius), vecf(p.velocity, d), num(p.start));
+  // TOML could say inf, but scene values must be finite: never closing is
+  // the key's absence.
+  out += std::isfinite(p.stop) ? fmt::format("stop = {}\n", num(p.stop)) : "# stop: never\n";
+  return out + fmt::format("particles_per_cell = {}\njitter = {}\n", p.particles_per_cell,
+                           num(p.jitter));
+}
+
 const char* boundary_name(BoundaryType t) {
   return t == BoundaryType::Stick ? "stick" : t == BoundaryType::Slip ? "slip" : "free";
 }
@@ -47,9 +120,7 @@ std::string scene_to_toml(const SceneConfig& s) {
       "cohesion_decay = {}\n",
       num(m.density), num(m.mu), num(m.phi_max), num(m.viscosity), num(m.cohesion),
       num(m.cohesion_decay));
-  if (m.mu_i)
-    out += fmt::format("mu_i = {{ delta_mu = {}, I0 = {}, grain_diameter = {} }}\n",
-                       num(m.mu_i->delta_mu), num(m.mu_i->I0), num(m.mu_i->grain_diameter));
+  if (m.mu_i) out += mu_i_line(*m.mu_i);
   out += fmt::format("\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\n\n[boundary]\n",
                      num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson);
   for (int f = 0; f < 2 * d; ++f)
@@ -59,16 +130,12 @@ std::string scene_to_toml(const SceneConfig& s) {
                        vecf(o.min, d), vecf(o.max, d));
   for (const SandConfig& c : s.sand) {
     out += "\n[[sand]]\n";
-    if (c.shape == SandShape::Box) {
-      out += fmt::format("shape = \"box\"\nmin = {}\nmax = {}\n", vecf(c.min, d), vecf(c.max, d));
-    } else {
-      out += fmt::format("shape = \"{}\"\ncenter = {}\nradius = {}\n", d == 2 ? "disk" : "cylinder",
-                         vecf(c.center, d), num(c.radius));
-      if (d == 3) out += fmt::format("height = {}\n", num(c.height));
-    }
+    out += shape_lines(c, d);
     out += fmt::format("particles_per_cell = {}\njitter = {}\nvelocity = {}\n",
                        c.particles_per_cell, num(c.jitter), vecf(c.velocity, d));
+    out += sand_material_lines(c.material);
   }
+  for (const SpoutConfig& p : s.spouts) out += spout_lines(p, d);
   return out;
 }
 

@@ -105,8 +105,9 @@ void deterministic_sums(std::int64_t n, int K, std::vector<double>& out, const F
 // stored velocities and stays consistent without a rescatter. x_{k+1} may
 // leave the cones; the next sweep maps every row back into its cone, and the
 // solver only stops after a plain sweep, so its answer is always feasible.
-// The history restarts when the residual grows (the accelerated iterate was
-// worse than a plain sweep) or the least-squares system is singular.
+// The history restarts when the residual grows by more than kGrowth (the
+// accelerated iterate was worse than the last one) or the least-squares
+// system is singular.
 // Velocity vectors are stored compactly over the free nodes `free[q]`.
 template <int D>
 class AndersonMixer {
@@ -199,7 +200,12 @@ class AndersonMixer {
   }
 
  private:
-  static constexpr double kGrowth = 2.0;            // restart when |f| more than doubles
+  // Restart when |f| grows by more than 20%. Measured (sweeps per step): 3D
+  // collapse (80 x 8 x 20, 0.2-0.26 s) 351 against 441 with a factor 2 and
+  // 548 plain; 2D collapse at 1 cm (0.1-0.4 s) 339 against 374. A factor 1
+  // (any growth) does as well there but stalls the first step of the 2D
+  // collapse at 1.8e-4 (tests/test_solver.cpp).
+  static constexpr double kGrowth = 1.2;
   static constexpr double kRegularisation = 1e-10;  // relative Tikhonov shift of A
   int m_ = 0, next_ = 0, count_ = 0;
   bool have_prev_ = false;

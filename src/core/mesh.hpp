@@ -1,0 +1,78 @@
+// Closed triangle meshes as sand regions: reading OBJ and STL files
+// (mesh_file.cpp), checking that a mesh is closed, and the inside test by the
+// generalised winding number (Jacobson et al. 2013), evaluated with a
+// bounding-volume tree and a far-field expansion (Barill et al. 2018).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sablier {
+
+using Point3 = std::array<double, 3>;
+
+// A mesh file that cannot be used: what() says why, without the file name
+// (the caller names the file and the scene key).
+struct MeshError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// An indexed triangle soup; vertices with equal coordinates are merged on
+// reading, so that shared edges can be recognised.
+struct TriangleMesh {
+  std::vector<Point3> vertices;
+  std::vector<std::array<std::int32_t, 3>> triangles;
+};
+
+// Reads an OBJ file (`v` and `f` lines; polygon faces are fan-triangulated,
+// other lines ignored) or an STL file (binary, or ASCII `solid`), chosen by
+// the extension (.obj, .stl, any case). Throws MeshError.
+TriangleMesh read_mesh_file(const std::string& path);
+
+// Edges not shared by exactly two triangles (0 for a closed mesh).
+std::size_t open_edge_count(const TriangleMesh& mesh);
+
+// The inside test of a closed mesh, built once; queries allocate nothing and
+// may run concurrently.
+class SolidMesh {
+ public:
+  explicit SolidMesh(const TriangleMesh& mesh);
+
+  // Generalised winding number: the solid angle the surface subtends at p
+  // over 4 pi; +-1 inside a closed mesh (the sign is the orientation), 0
+  // outside, 1/2 on the surface.
+  double winding_number(const Point3& p) const;
+  // |winding number| > 1/2: meshes oriented either way fill the same.
+  bool contains(const Point3& p) const;
+
+  const Point3& lower() const { return lo_; }
+  const Point3& upper() const { return hi_; }
+  double volume() const { return volume_; }  // enclosed volume, m^3 (by the divergence theorem)
+  std::size_t triangle_count() const { return tri_.size(); }
+
+ private:
+  struct Tri {
+    Point3 a, b, c;
+  };
+  // A node of the tree: its triangles are tri_[first, first + count); the
+  // far field of its surface is the dipole sum `area_normal` at `centre`
+  // plus the first-moment correction `moment` (row-major 3x3).
+  struct Node {
+    Point3 centre, area_normal;
+    std::array<double, 9> moment;
+    double radius;                           // every vertex within this distance of centre
+    std::int32_t first, count, left, right;  // children -1 for a leaf
+  };
+  std::int32_t build(std::int32_t first, std::int32_t count, int depth);
+  void summarise(Node& n) const;
+
+  std::vector<Tri> tri_;
+  std::vector<Node> nodes_;
+  Point3 lo_{}, hi_{};
+  double volume_ = 0.0;
+};
+
+}  // namespace sablier

@@ -1,0 +1,285 @@
+// Scene parsing of spheres, polygons, triangle meshes and [[spout]] blocks
+// (docs/scenes.md), and the check that every source yields particles.
+#include "scene/scene_sources.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "core/mesh.hpp"
+#include "physics/emission.hpp"
+#include "physics/seeding.hpp"
+
+namespace sablier {
+namespace {
+
+using Names = std::vector<std::string>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Range positive() { return Range{0.0, kInf, true, false}; }
+Range non_negative() { return Range{0.0, kInf, false, false}; }
+Range closed(double lo, double hi) { return Range{lo, hi, false, false}; }
+
+char axis_name(int a) { return "xyz"[a]; }
+
+// The geometric keys each shape takes.
+const std::map<std::string, Names>& shape_keys() {
+  static const std::map<std::string, Names> keys{
+      {"box", {"min", "max"}},
+      {"disk", {"center", "radius"}},
+      {"cylinder", {"center", "radius", "height"}},
+      {"sphere", {"center", "radius"}},
+      {"polygon", {"vertices"}},
+      {"mesh", {"file", "scale", "translate"}},
+  };
+  return keys;
+}
+const Names kNewKeys{"vertices", "file", "scale", "translate"};
+const Names kOldKeys{"min", "max", "center", "radius", "height"};
+
+std::string joined(const Names& words) {
+  std::string s;
+  for (const std::string& w : words) s += (s.empty() ? "" : ", ") + w;
+  return s;
+}
+
+// [lo, hi] on `axis` must lie in the box [0, size].
+void check_inside(TableReader& t, const SceneConfig& s, const std::string& key, double lo,
+                  double hi, int axis, const char* what = "the sand region") {
+  const double eps = 1e-12 * s.size[axis];
+  if (lo < -eps || hi > s.size[axis] + eps)
+    t.fail_at(t.node(key), key,
+              fmt::format("{} [{}, {}] on {} leaves the box; allowed: within [0, {}] (grid.size)",
+                          what, lo, hi, axis_name(axis), s.size[axis]));
+}
+
+void read_sphere(TableReader& t, SandConfig& c, const SceneConfig& s) {
+  c.shape = SandShape::Sphere;
+  c.center = t.vector("center", 3, std::nullopt, Range());
+  c.radius = t.number("radius", std::nullopt, positive());
+  for (int a = 0; a < 3; ++a)
+    check_inside(t, s, "center", c.center[a] - c.radius, c.center[a] + c.radius, a);
+}
+
+// One corner [x, y] of a polygon.
+Vec3d polygon_vertex(TableReader& t, const toml::node& n, std::size_t k) {
+  const toml::array* xy = n.as_array();
+  Vec3d v{0, 0, 0};
+  bool ok = xy && xy->size() == 2;
+  for (std::size_t a = 0; ok && a < 2; ++a) {
+    const toml::node* x = xy->get(a);
+    ok = x->is_number();
+    if (ok) v[a] = x->is_integer() ? double(x->as_integer()->get()) : x->as_floating_point()->get();
+    ok = ok && std::isfinite(v[a]);
+  }
+  if (!ok)
+    t.fail_at(&n, "vertices",
+              fmt::format("vertex {} is not a point [x, y] of finite numbers; allowed: an array of "
+                          "at least 3 points [x, y]",
+                          k));
+  return v;
+}
+
+// Twice the signed area (shoelace formula).
+double twice_area(const std::vector<Vec3d>& v) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec3d &p = v[i], &q = v[(i + 1) % v.size()];
+    a += p[0] * q[1] - q[0] * p[1];
+  }
+  return a;
+}
+
+void read_polygon(TableReader& t, SandConfig& c, const SceneConfig& s) {
+  c.shape = SandShape::Polygon;
+  const std::string allowed = "an array of at least 3 points [x, y] (a simple polygon)";
+  const toml::node* n = t.node("vertices");
+  if (!n) t.fail("vertices", "missing; required: " + allowed);
+  const toml::array* list = n->as_array();
+  if (!list) t.fail_at(n, "vertices", "expected an array of points; allowed: " + allowed);
+  if (list->size() < 3)
+    t.fail_at(n, "vertices", fmt::format("{} vertices; allowed: {}", list->size(), allowed));
+  c.vertices.clear();
+  for (std::size_t k = 0; k < list->size(); ++k)
+    c.vertices.push_back(polygon_vertex(t, *list->get(k), k));
+  Vec3d lo = c.vertices[0], hi = c.vertices[0];
+  for (const Vec3d& v : c.vertices)
+    for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], v[a]), hi[a] = std::max(hi[a], v[a]);
+  for (int a = 0; a < 2; ++a) check_inside(t, s, "vertices", lo[a], hi[a], a);
+  if (std::abs(twice_area(c.vertices)) <=
+      1e-12 * (hi[0] - lo[0] + hi[1] - lo[1]) * (hi[0] - lo[0] + hi[1] - lo[1]))
+    t.fail_at(n, "vertices",
+              "the polygon has zero area (its vertices are collinear or repeated); allowed: a "
+              "simple polygon of positive area");
+}
+
+// The mesh file's path: relative paths are relative to the scene file's folder.
+std::string mesh_path(const std::string& file, const SceneConfig& s) {
+  namespace fs = std::filesystem;
+  fs::path p(file);
+  if (p.is_relative()) p = fs::path(s.source).parent_path() / p;
+  return fs::absolute(p).lexically_normal().string();
+}
+
+void read_mesh(TableReader& t, SandConfig& c, const SceneConfig& s) {
+  c.shape = SandShape::Mesh;
+  const std::string allowed =
+      "a closed triangle mesh file, OBJ (v and f lines) or STL (binary or ASCII)";
+  const toml::node* n = t.node("file");
+  if (!n) t.fail("file", "missing; required: " + allowed);
+  if (!n->is_string()) t.fail_at(n, "file", "expected a file name (a string); allowed: " + allowed);
+  c.file = n->as_string()->get();
+  c.file_path = mesh_path(c.file, s);
+  c.scale = t.number("scale", 1.0, positive());
+  c.translate = t.vector("translate", 3, Vec3d{0, 0, 0}, Range());
+  TriangleMesh mesh;
+  try {
+    mesh = read_mesh_file(c.file_path);
+  } catch (const MeshError& e) {
+    t.fail_at(n, "file",
+              fmt::format("cannot use the mesh file \"{}\": {}; allowed: {}", c.file_path, e.what(),
+                          allowed));
+  }
+  if (const std::size_t open = open_edge_count(mesh))
+    t.fail_at(n, "file",
+              fmt::format("the mesh in \"{}\" is not closed: {} open edge{} (each edge must be "
+                          "shared by exactly two triangles); allowed: {}",
+                          c.file_path, open, open == 1 ? "" : "s", allowed));
+  for (Point3& v : mesh.vertices)
+    for (int a = 0; a < 3; ++a) v[a] = c.scale * v[a] + c.translate[a];
+  c.mesh = std::make_shared<const SolidMesh>(mesh);
+  for (int a = 0; a < 3; ++a)
+    check_inside(t, s, t.has("translate") ? "translate" : "file", c.mesh->lower()[a],
+                 c.mesh->upper()[a], a);
+}
+
+double speed_squared(const SpoutConfig& sp) {
+  return sp.velocity[0] * sp.velocity[0] + sp.velocity[1] * sp.velocity[1] +
+         sp.velocity[2] * sp.velocity[2];
+}
+
+// The cross-section (segment or disk perpendicular to the velocity) must
+// lie in the box.
+void check_spout_inside(TableReader& t, const SpoutConfig& sp, const SceneConfig& s) {
+  const double v2 = speed_squared(sp);
+  for (int a = 0; a < s.dimension; ++a) {
+    const double reach =
+        sp.radius * std::sqrt(std::max(0.0, 1.0 - sp.velocity[a] * sp.velocity[a] / v2));
+    const bool centre_out = sp.center[a] < 0.0 || sp.center[a] > s.size[a];
+    check_inside(t, s, centre_out ? "center" : "radius", sp.center[a] - reach, sp.center[a] + reach,
+                 a, "the spout's cross-section");
+  }
+}
+
+// A spout must emit at least one particle, and its particle ids must stay
+// unique (emission.hpp): fewer than 2^20 points per layer and layers.
+void check_spout_output(TableReader& t, const SpoutConfig& sp, const SceneConfig& s) {
+  const double spacing = s.cell_size() / sp.particles_per_cell;
+  const std::size_t points = spout_layer_size(s.dimension, sp.radius, spacing);
+  if (points == 0)
+    t.fail_at(t.node("radius"), "radius",
+              fmt::format("the cross-section holds no particle at the spacing {} m (the cell "
+                          "size / particles_per_cell); allowed: radius > {} m",
+                          spacing, s.dimension == 2 ? spacing / 4 : spacing / std::sqrt(2.0)));
+  if (points >= std::size_t(kSpoutIdLimit))
+    t.fail_at(t.node("radius"), "radius",
+              fmt::format("{} particles per layer; allowed: fewer than {} (particle ids)", points,
+                          kSpoutIdLimit));
+  if (std::isfinite(sp.stop) && spout_layers(sp, spacing, sp.stop) < 1)
+    t.fail_at(t.node("stop"), "stop",
+              fmt::format("the spout closes before one layer of particles ({} m) has passed, so "
+                          "it emits nothing; allowed: stop >= {} s (start + spacing / |velocity|)",
+                          spacing, sp.start + spacing / std::sqrt(speed_squared(sp))));
+  const double end = s.time.frames / s.time.fps;
+  const std::int64_t layers = spout_layers(sp, spacing, end);
+  if (layers >= kSpoutIdLimit)
+    t.fail_at(t.node(t.has("stop") ? "stop" : "velocity"), t.has("stop") ? "stop" : "velocity",
+              fmt::format("the spout emits {} layers of particles by the end of the run; allowed: "
+                          "fewer than {} (particle ids): a slower or shorter flow, or fewer "
+                          "particles_per_cell",
+                          layers, kSpoutIdLimit));
+}
+
+SpoutConfig read_spout(TableReader t, const SceneConfig& s) {
+  const int d = s.dimension;
+  SpoutConfig sp;
+  sp.center = t.vector("center", d, std::nullopt, Range());
+  sp.radius = t.number("radius", std::nullopt, positive());
+  sp.velocity = t.vector("velocity", d, std::nullopt, Range());
+  if (speed_squared(sp) <= 0.0)
+    t.fail_at(t.node("velocity"), "velocity",
+              "zero; allowed: a nonzero vector, the direction and speed of the grains leaving "
+              "the spout");
+  sp.start = t.number("start", 0.0, non_negative());
+  if (t.has("stop")) sp.stop = t.number("stop", std::nullopt, Range{sp.start, kInf, true, false});
+  sp.particles_per_cell = t.int_value("particles_per_cell", 2, closed(1, 8));
+  sp.jitter = t.number("jitter", 0.0, closed(0, 1));
+  t.reject_unknown();
+  check_spout_inside(t, sp, s);
+  check_spout_output(t, sp, s);
+  return sp;
+}
+
+}  // namespace
+
+std::vector<std::string> shapes_of_other_dimension(int dimension) {
+  return dimension == 2 ? Names{"cylinder", "sphere", "mesh"} : Names{"disk", "polygon"};
+}
+
+void reject_other_shape_keys(TableReader& t, const std::string& shape) {
+  const bool old_shape = shape == "box" || shape == "disk" || shape == "cylinder";
+  const Names& allowed = shape_keys().at(shape);
+  for (const std::string& k : old_shape ? kNewKeys : kOldKeys)
+    if (t.has(k) && std::find(allowed.begin(), allowed.end(), k) == allowed.end())
+      t.fail_at(t.node(k), k,
+                fmt::format("not used by shape \"{}\"; allowed: {}", shape, joined(allowed)));
+}
+
+void read_source_shape(TableReader& t, const std::string& shape, SandConfig& c,
+                       const SceneConfig& s) {
+  if (shape == "sphere") {
+    read_sphere(t, c, s);
+  } else if (shape == "polygon") {
+    read_polygon(t, c, s);
+  } else {
+    read_mesh(t, c, s);
+  }
+}
+
+void read_all_spouts(TableReader& root, SceneConfig& s) {
+  s.spouts.clear();
+  if (const toml::array* list = root.array_of_tables("spout"))
+    for (std::size_t k = 0; k < list->size(); ++k)
+      s.spouts.push_back(
+          read_spout(root.sub(list->get(k)->as_table(), fmt::format("spout[{}]", k)), s));
+}
+
+void check_regions_seed(TableReader& root, const SceneConfig& s) {
+  if (s.sand.empty()) return;
+  const std::vector<std::size_t> counts = seeded_per_region(s);
+  const toml::array* list = root.array_of_tables("sand");
+  for (std::size_t k = 0; k < counts.size(); ++k) {
+    if (counts[k] > 0) continue;
+    TableReader t = root.sub(list->get(k)->as_table(), fmt::format("sand[{}]", k));
+    const double spacing = s.cell_size() / s.sand[k].particles_per_cell;
+    t.fail_at(t.node("shape"), "shape",
+              fmt::format("the region holds no particle: it is thinner than the particle spacing "
+                          "{} m (the cell size / particles_per_cell), or covered by earlier "
+                          "[[sand]] blocks; allowed: a region holding at least one particle",
+                          spacing));
+  }
+}
+
+std::vector<std::string> source_scene_keys() {
+  Names keys;
+  for (const std::string& k : kNewKeys) keys.push_back("sand[]." + k);
+  for (const char* k :
+       {"center", "radius", "velocity", "start", "stop", "particles_per_cell", "jitter"})
+    keys.push_back(std::string("spout[].") + k);
+  return keys;
+}
+
+}  // namespace sablier

@@ -1,0 +1,33 @@
+// Parsing of the sand sources beyond boxes, disks and cylinders (spheres,
+// polygons, triangle meshes) and of [[spout]] blocks; scene_parse.cpp calls
+// these. Errors are one-line SceneErrors, like every scene error.
+#pragma once
+
+#include <string>
+
+#include "scene/scene.hpp"
+#include "scene/scene_reader.hpp"
+
+namespace sablier {
+
+// Shapes of the other dimension, for "only valid in 3D" messages.
+std::vector<std::string> shapes_of_other_dimension(int dimension);
+
+// Rejects the keys of one shape in a block of another, for the keys and
+// shapes that the box/disk/cylinder reader does not already cover.
+void reject_other_shape_keys(TableReader& t, const std::string& shape);
+
+// "sphere" (3D), "polygon" (2D) or "mesh" (3D).
+void read_source_shape(TableReader& t, const std::string& shape, SandConfig& c,
+                       const SceneConfig& s);
+
+// The [[spout]] blocks (none if absent).
+void read_all_spouts(TableReader& root, SceneConfig& s);
+
+// Every [[sand]] block must seed at least one particle (physics/seeding.cpp).
+void check_regions_seed(TableReader& root, const SceneConfig& s);
+
+// The keys these blocks add, as known_scene_keys() names them.
+std::vector<std::string> source_scene_keys();
+
+}  // namespace sablier
