@@ -4,48 +4,28 @@
 // thread count.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "io/stats_writer.hpp"
 #include "io/writers.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result sablier(const std::string& args) {
-  // One log per process: ctest runs the tests of this file in parallel.
-  const fs::path log = fs::temp_directory_path() / ("sablier_cli_log_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = std::string(SABLIER_BINARY) + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  Result r{WEXITSTATUS(status), read_file(log.string())};
-  fs::remove(log);
-  return r;
-}
-
-std::string scene(const char* name) { return std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name; }
-
-fs::path fresh(const char* name) {
-  const fs::path dir = fs::temp_directory_path() / (std::string("sablier_cli_") + name);
-  fs::remove_all(dir);
-  return dir;
-}
+using test::Result;
+using test::sablier;
+using test::scene_file;
 
 const char* const kSmall = " --set time.frames=3 --set grid.resolution=[40,10] --quiet";
 
 TEST(Cli, RunWritesTheOutputs) {
-  const fs::path dir = fresh("run");
-  const Result r = sablier("run " + scene("collapse2d.toml") + " --out " + dir.string() +
+  const fs::path dir = test::fresh_dir("cli_run");
+  const Result r = sablier("run " + scene_file("collapse2d.toml") + " --out " + dir.string() +
                            " --format vtp,csv" + kSmall);
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* f : {"stats.csv", "series.pvd", "scene.toml", "frames/particles_00000.vtp",
@@ -71,41 +51,41 @@ TEST(Cli, RunWritesTheOutputs) {
 }
 
 TEST(Cli, BadSceneWritesNothing) {
-  const fs::path dir = fresh("bad");
+  const fs::path dir = test::fresh_dir("cli_bad");
   const fs::path bad = fs::temp_directory_path() / "sablier_cli_bad_scene.toml";
-  std::ofstream(bad) << read_file(scene("collapse2d.toml")) << "\n[solver]\ntolerence = 1e-3\n";
+  std::ofstream(bad) << read_file(scene_file("collapse2d.toml")) << "\n[solver]\ntolerence = 1e-3\n";
   Result r = sablier("run " + bad.string() + " --out " + dir.string());
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("solver.tolerence"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("did you mean \"tolerance\""), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(fs::exists(dir));
-  r = sablier("run " + scene("collapse2d.toml") + " --out " + dir.string() + " --set material.mu=nan");
+  r = sablier("run " + scene_file("collapse2d.toml") + " --out " + dir.string() + " --set material.mu=nan");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("material.mu"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir));
 }
 
 TEST(Cli, RefusesToMixRuns) {
-  const fs::path dir = fresh("mix");
+  const fs::path dir = test::fresh_dir("cli_mix");
   const std::string kSmall = " --set time.frames=2 --quiet";
-  ASSERT_EQ(sablier("run " + scene("bed2d.toml") + " --out " + dir.string() + kSmall).code, 0);
-  const Result again = sablier("run " + scene("bed2d.toml") + " --out " + dir.string() + kSmall);
+  ASSERT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall).code, 0);
+  const Result again = sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall);
   EXPECT_NE(again.code, 0);
   EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
-  EXPECT_EQ(sablier("run " + scene("bed2d.toml") + " --out " + dir.string() + kSmall + " --overwrite").code, 0);
+  EXPECT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall + " --overwrite").code, 0);
 }
 
 TEST(Cli, SameResultWhateverTheThreadCount) {
-  const fs::path a = fresh("t1"), b = fresh("t2");
-  ASSERT_EQ(sablier("run " + scene("collapse2d.toml") + " --out " + a.string() + " --threads 1" + kSmall).code, 0);
-  ASSERT_EQ(sablier("run " + scene("collapse2d.toml") + " --out " + b.string() + " --threads 2" + kSmall).code, 0);
+  const fs::path a = test::fresh_dir("cli_t1"), b = test::fresh_dir("cli_t2");
+  ASSERT_EQ(sablier("run " + scene_file("collapse2d.toml") + " --out " + a.string() + " --threads 1" + kSmall).code, 0);
+  ASSERT_EQ(sablier("run " + scene_file("collapse2d.toml") + " --out " + b.string() + " --threads 2" + kSmall).code, 0);
   for (const char* f : {"frames/particles_00001.vtp", "frames/particles_00003.vtp"})
     EXPECT_EQ(read_file((a / f).string()), read_file((b / f).string())) << f;
 }
 
 TEST(Cli, CheckAndInfo) {
-  Result r = sablier("check " + scene("collapse3d.toml"));
+  Result r = sablier("check " + scene_file("collapse3d.toml"));
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("particles  20480"), std::string::npos) << r.output;
   r = sablier("info");

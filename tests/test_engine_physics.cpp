@@ -13,25 +13,13 @@
 
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
 
-SceneConfig scene(const char* name, std::vector<std::string> overrides = {}) {
-  return load_scene(std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name, overrides);
-}
-
-// Runs to time t with adaptive steps; checks every step's solver report
-// (the residual is below the tolerance, or the step says it hit the cap).
-template <int D>
-void run_until(Simulation<D>& sim, double t) {
-  const double tol = sim.scene().solver.tolerance;
-  while (sim.time() < t - 1e-12) {
-    const StepInfo info = sim.step(sim.adaptive_dt(t - sim.time()));
-    ASSERT_TRUE(info.solve.residual <= tol || info.solve.hit_cap)
-        << "step " << sim.steps() << " residual " << info.solve.residual;
-  }
-}
+using test::run_until;
+using test::scene;
 
 // A bed of depth H at rest: after 1 s it has not moved (max speed < 1e-3
 // m/s), the vertical stress one node above the floor is within 5% of the

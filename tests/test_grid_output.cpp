@@ -3,8 +3,6 @@
 // --compress` writes them (and compressed particle frames) as frames and
 // series, and a resumed run writes the same bytes as an uninterrupted one.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,13 +11,16 @@
 #include "io/writers.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string scene(const char* name) { return std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name; }
+using test::Result;
+using test::sablier;
+using test::scene_file;
 
 // bed2d: 40 x 20 cells of 2.5 cm, sand up to y = 0.3 m (node row 12).
 constexpr int kSurfaceRow = 12;
@@ -35,7 +36,7 @@ double at(const std::vector<double>& v, const GridFrame& g, int i, int j) {
 }
 
 TEST(GridFrame, BedAtRest2D) {
-  const SceneConfig s = load_scene(scene("bed2d.toml"));
+  const SceneConfig s = load_scene(scene_file("bed2d.toml"));
   Simulation<2> sim(s);
   const double phi_max = s.material.phi_max;
   // Before any solve: phi from the particles, nothing active.
@@ -90,7 +91,7 @@ TEST(GridFrame, BedAtRest2D) {
 }
 
 TEST(GridFrame, BedAtRest3D) {
-  const SceneConfig s = load_scene(scene("bed3d.toml"), {"grid.resolution=[10,5,7]"});
+  const SceneConfig s = load_scene(scene_file("bed3d.toml"), {"grid.resolution=[10,5,7]"});
   Simulation<3> sim(s);
   const GridFrame g = after(sim, 1.0 / 30);
   ASSERT_EQ(g.nodes, (std::array<int, 3>{11, 6, 8}));
@@ -110,34 +111,14 @@ TEST(GridFrame, BedAtRest3D) {
     EXPECT_GT(layer_mean(g.pressure, k), layer_mean(g.pressure, k + 1)) << "layer " << k;
 }
 
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result sablier(const std::string& args) {
-  const fs::path log =
-      fs::temp_directory_path() / ("sablier_grid_log_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = std::string(SABLIER_BINARY) + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  Result r{WEXITSTATUS(status), read_file(log.string())};
-  fs::remove(log);
-  return r;
-}
-
-fs::path fresh(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("sablier_grid_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
+fs::path fresh(const std::string& name) { return test::fresh_dir("grid_" + name); }
 
 const std::string kSmall =
     " --set time.frames=2 --set grid.resolution=[20,10] --threads 1 --quiet --grid --compress";
 
 TEST(GridOutput, RunWritesGridFramesAndSeries) {
   const fs::path dir = fresh("run");
-  const Result r = sablier("run " + scene("bed2d.toml") + " --out " + dir.string() +
+  const Result r = sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() +
                            " --format vtp,csv" + kSmall);
   ASSERT_EQ(r.code, 0) << r.output;
   const std::string series = read_file((dir / "grid_series.pvd").string());
@@ -168,7 +149,7 @@ TEST(GridOutput, RunWritesGridFramesAndSeries) {
 
 TEST(GridOutput, NoGridUnlessAsked) {
   const fs::path dir = fresh("none");
-  ASSERT_EQ(sablier("run " + scene("bed2d.toml") + " --out " + dir.string() +
+  ASSERT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() +
                     " --set time.frames=1 --set grid.resolution=[20,10] --threads 1 --quiet")
                 .code,
             0);
@@ -183,7 +164,7 @@ TEST(GridOutput, NoGridUnlessAsked) {
 // grid frames, compressed, byte for byte as an uninterrupted run does.
 TEST(GridOutput, ResumeWritesTheSameGridFrames) {
   const fs::path whole = fresh("whole"), parts = fresh("parts");
-  const std::string args = "run " + scene("bed2d.toml") + kSmall + " --out ";
+  const std::string args = "run " + scene_file("bed2d.toml") + kSmall + " --out ";
   ASSERT_EQ(sablier(args + whole.string()).code, 0);
   ASSERT_EQ(sablier(args + parts.string() + " --stop-after-frame 1").code, 130);
   EXPECT_FALSE(fs::exists(parts / "frames/grid_00002.vti"));

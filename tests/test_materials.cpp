@@ -3,8 +3,6 @@
 // mu(I) reach its own particles, and only them.
 #include <gtest/gtest.h>
 #include <omp.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +18,7 @@
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
 #include "scene_fixtures.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
@@ -34,15 +33,7 @@ struct OneThread : testing::Environment {
 };
 const testing::Environment* const kOneThread = testing::AddGlobalTestEnvironment(new OneThread);
 
-template <int D>
-void run_until(Simulation<D>& sim, double t) {
-  const double tol = sim.scene().solver.tolerance;
-  while (sim.time() < t - 1e-12) {
-    const StepInfo info = sim.step(sim.adaptive_dt(t - sim.time()));
-    ASSERT_TRUE(info.solve.residual <= tol || info.solve.hit_cap)
-        << "step " << sim.steps() << " residual " << info.solve.residual;
-  }
-}
+using test::run_until;
 
 // ------------------------------------------------------------- two-layer bed
 
@@ -393,15 +384,11 @@ TEST(Materials, CheckpointKeepsMaterials) {
 // the frames an uninterrupted run writes, bit for bit.
 TEST(Materials, ResumedRunIsBitIdentical) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("sablier_materials_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::temp_dir("materials");
   const fs::path scene = dir / "pair.toml";
   write_file_atomic(scene.string(), kPair + "[time]\nframes = 3\nsubsteps = 2\n");
   const std::string run = std::string(SABLIER_BINARY) + " run " + scene.string() + " --quiet --threads 1 --out ";
-  const auto sh = [](const std::string& line) {
-    return WEXITSTATUS(std::system((line + " > /dev/null 2>&1").c_str()));
-  };
+  const auto sh = [](const std::string& line) { return test::shell(line).code; };
   ASSERT_EQ(sh(run + (dir / "a").string()), 0);
   ASSERT_EQ(sh(run + (dir / "b").string() + " --stop-after-frame 1"), 130);
   ASSERT_EQ(sh(std::string(SABLIER_BINARY) + " run --resume " + (dir / "b").string() +

@@ -1,13 +1,13 @@
 // Binary PLY frames: the header a PLY reader expects, and each vertex's bytes
 // in the order and types it announces.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 
 #include "io/writers.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
@@ -103,8 +103,7 @@ TEST(Ply, EmptyFrame) {
 }
 
 TEST(Ply, RunWritesPlyFrames) {
-  const fs::path dir = fs::temp_directory_path() / ("sablier_ply_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = test::fresh_dir("ply");
   const std::string cmd = std::string(SABLIER_BINARY) + " run " + SABLIER_SOURCE_DIR +
                           "/scenes/collapse2d.toml --out " + dir.string() +
                           " --format ply --set time.frames=1 --set grid.resolution=[40,10] "

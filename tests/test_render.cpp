@@ -4,7 +4,6 @@
 // decodable pictures or fail with one line and exit code 2.
 #include <gtest/gtest.h>
 #include <png.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
@@ -15,6 +14,7 @@
 #include "io/plot.hpp"
 #include "io/render.hpp"
 #include "io/writers.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
@@ -203,24 +203,11 @@ TEST(Render, ThreeDFramesShowTheBoxAndShadedGrains) {
 
 // ---- the command line ----
 
-struct Result {
-  int code;
-  std::string output;
-};
+using test::Result;
+using test::sablier;
+using test::shell;
 
-fs::path temp(const std::string& name) {
-  return fs::temp_directory_path() / ("sablier_render_" + std::to_string(::getpid()) + "_" + name);
-}
-
-Result shell(const std::string& command) {
-  const fs::path log = temp("log.txt");
-  const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
-  Result r{WEXITSTATUS(status), read_file(log.string())};
-  fs::remove(log);
-  return r;
-}
-
-Result sablier(const std::string& args) { return shell(std::string(SABLIER_BINARY) + " " + args); }
+fs::path temp(const std::string& name) { return test::temp_path("render_" + name); }
 
 // A finished 2-frame run of the bed scene (frames 0, 1, 2).
 fs::path tiny_run(const std::string& name) {

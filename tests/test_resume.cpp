@@ -2,8 +2,6 @@
 // `sablier run --resume DIR` continues it bit for bit as if it had never
 // stopped; a damaged checkpoint is refused with one line and nothing written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -15,46 +13,26 @@
 #include "io/checkpoint.hpp"
 #include "io/stats_writer.hpp"
 #include "io/writers.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string output;
-};
+using test::Result;
+using test::sablier;
+using test::scene_file;
+using test::shell;
 
-// Runs a shell command line; `{bin}` in it is the sablier binary.
-Result shell(const std::string& line) {
-  // One log per process: ctest runs the tests of this file in parallel.
-  const fs::path log =
-      fs::temp_directory_path() / ("sablier_resume_log_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = "(" + line + ") > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  Result r{WEXITSTATUS(status), read_file(log.string())};
-  fs::remove(log);
-  return r;
-}
-
-Result sablier(const std::string& args) { return shell(std::string(SABLIER_BINARY) + " " + args); }
-
-std::string scene(const char* name) { return std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name; }
-
-fs::path fresh(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("sablier_resume_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
+fs::path fresh(const std::string& name) { return test::fresh_dir("resume_" + name); }
 
 // One thread: the comparison is between equal thread counts, and ctest runs
 // tests side by side on few cores.
 const std::string kSmall = " --set time.frames=4 --set grid.resolution=[40,10] --threads 1 --quiet";
 
 std::string run_args(const fs::path& dir, const std::string& extra = "") {
-  return "run " + scene("collapse2d.toml") + " --out " + dir.string() + kSmall + extra;
+  return "run " + scene_file("collapse2d.toml") + " --out " + dir.string() + kSmall + extra;
 }
 
 std::string file(const fs::path& p) { return read_file(p.string()); }

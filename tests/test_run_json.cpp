@@ -1,7 +1,6 @@
 // run.json: valid JSON (read back by a small parser here), written when the
 // run starts and rewritten when it ends, with the resolved scene and its hash.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cctype>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include "io/json.hpp"
 #include "io/stats_writer.hpp"
 #include "io/writers.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
@@ -141,9 +141,7 @@ TEST(RunJson, QuotingRoundTrips) {
 }
 
 TEST(RunJson, DescribesTheRun) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("sablier_runjson_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = test::fresh_dir("runjson");
   const std::string cmd = std::string(SABLIER_BINARY) + " run " + SABLIER_SOURCE_DIR +
                           "/scenes/collapse2d.toml --out " + dir.string() +
                           " --set time.frames=2 --set grid.resolution=[40,10] --threads 1 --quiet";

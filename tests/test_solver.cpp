@@ -13,13 +13,12 @@
 
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
 
-SceneConfig scene(const char* name, std::vector<std::string> overrides) {
-  return load_scene(std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name, overrides);
-}
+using test::scene;
 
 // The first step of a collapse builds the column's whole stress field from
 // a zero warm start: the hardest solve of the run. Returns the grid

@@ -7,8 +7,6 @@
 // thread count and across an interrupted and resumed run.
 #include <gtest/gtest.h>
 #include <omp.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
@@ -24,6 +22,7 @@
 #include "physics/emission.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
@@ -34,13 +33,7 @@ using Tri = std::array<Point3, 3>;
 constexpr double kPi = 3.14159265358979323846;
 
 // A folder of this process (ctest runs the tests side by side).
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("sablier_sources_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir(const std::string& name) { return test::temp_dir("sources_" + name); }
 
 std::string message_of(const std::string& text) {
   try {
@@ -477,20 +470,8 @@ jitter = 1.0
 
 // ------------------------------------------------ threads and resume (CLI)
 
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result sablier(const std::string& args) {
-  const fs::path log =
-      fs::temp_directory_path() / ("sablier_sources_log_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = std::string(SABLIER_BINARY) + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  Result r{WEXITSTATUS(status), read_file(log.string())};
-  fs::remove(log);
-  return r;
-}
+using test::Result;
+using test::sablier;
 
 // The shipped pile, short and coarse: 0.2 s of pouring.
 std::string pile_args(const fs::path& dir, const std::string& extra) {

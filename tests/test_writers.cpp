@@ -7,6 +7,7 @@
 
 #include "io/stats_writer.hpp"
 #include "io/writers.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
@@ -35,12 +36,7 @@ ParticleFrame sample(int d, std::size_t n) {
   return f;
 }
 
-fs::path temp_dir(const char* name) {
-  const fs::path dir = fs::temp_directory_path() / (std::string("sablier_test_") + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::temp_dir;
 
 void expect_same(const ParticleFrame& a, const ParticleFrame& b) {
   EXPECT_EQ(a.dimension, b.dimension);

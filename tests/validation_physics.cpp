@@ -8,13 +8,12 @@
 
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "test_support.hpp"
 
 namespace sablier {
 namespace {
 
-SceneConfig scene(const char* name, std::vector<std::string> overrides = {}) {
-  return load_scene(std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name, overrides);
-}
+using test::scene;
 
 // A silo drains at a rate that does not depend on the fill height, unlike a
 // liquid (Janssen screening; Beverloo et al. 1961; METHOD.md section 5). The

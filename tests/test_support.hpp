@@ -1,0 +1,86 @@
+// Helpers shared by the test programs: the command-line runner, temp folders
+// of this process, the shipped scenes, and a stepping loop that checks the
+// solver. Each test program is its own process, and ctest runs them side by
+// side, so every temp name carries the process id.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/writers.hpp"
+#include "physics/simulation.hpp"
+#include "scene/scene.hpp"
+
+namespace sablier::test {
+
+// A temp path of this process: <tmp>/sablier_<name>_<pid>.
+inline std::filesystem::path temp_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("sablier_" + name + "_" + std::to_string(::getpid()));
+}
+
+// temp_path(name), emptied: removed, not created (a run creates it).
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  const std::filesystem::path dir = temp_path(name);
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+// fresh_dir(name), created.
+inline std::filesystem::path temp_dir(const std::string& name) {
+  const std::filesystem::path dir = fresh_dir(name);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// What a command did: its exit code and its stdout and stderr together.
+struct Result {
+  int code;
+  std::string output;
+};
+
+// Runs a shell command line, `{bin}` in it standing for the sablier binary;
+// the output goes through a log file of this process.
+inline Result shell(std::string line) {
+  const std::string bin = SABLIER_BINARY;
+  for (std::size_t at = line.find("{bin}"); at != std::string::npos; at = line.find("{bin}", at + bin.size()))
+    line.replace(at, 5, bin);
+  const std::filesystem::path log = temp_path("log");
+  const int status = std::system(("(" + line + ") > " + log.string() + " 2>&1").c_str());
+  Result r{WEXITSTATUS(status), read_file(log.string())};
+  std::filesystem::remove(log);
+  return r;
+}
+
+// Runs the sablier binary with these arguments.
+inline Result sablier(const std::string& args) { return shell(std::string(SABLIER_BINARY) + " " + args); }
+
+// The path of a shipped scene, scenes/<name>.
+inline std::string scene_file(const std::string& name) {
+  return std::string(SABLIER_SOURCE_DIR) + "/scenes/" + name;
+}
+
+// A shipped scene, loaded with `--set`-style overrides.
+inline SceneConfig scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  return load_scene(scene_file(name), overrides);
+}
+
+// Runs to time t with adaptive steps; checks every step's solver report
+// (the residual is below the tolerance, or the step says it hit the cap).
+template <int D>
+void run_until(Simulation<D>& sim, double t) {
+  const double tol = sim.scene().solver.tolerance;
+  while (sim.time() < t - 1e-12) {
+    const StepInfo info = sim.step(sim.adaptive_dt(t - sim.time()));
+    ASSERT_TRUE(info.solve.residual <= tol || info.solve.hit_cap)
+        << "step " << sim.steps() << " residual " << info.solve.residual;
+  }
+}
+
+}  // namespace sablier::test
