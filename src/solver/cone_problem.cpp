@@ -131,8 +131,9 @@ class AndersonMixer {
     if (m_ <= 0) return;
     const std::int64_t nf = static_cast<std::int64_t>(free.size());
     const int rows = p.rows();
-    if (have_prev_ && fnorm2 > kGrowth * kGrowth * fnorm2_prev_) count_ = 0;  // restart
-    const bool record = have_prev_ && fnorm2 <= kGrowth * kGrowth * fnorm2_prev_;
+    const bool grew = have_prev_ && fnorm2 > kGrowth * kGrowth * fnorm2_prev_;
+    if (grew) count_ = 0;  // restart
+    const bool record = have_prev_ && !grew;
     have_prev_ = true;
     fnorm2_prev_ = fnorm2;
     const int slot = next_ % m_;
