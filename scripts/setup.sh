@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libeigen3-dev libtomlplusplus-dev libcli11-dev
           libfmt-dev libgtest-dev libbenchmark-dev libpng-dev zlib1g-dev
-          python3-vtk9)  # python3-vtk9: the test that VTK reads our files
+          python3-vtk9   # the test that VTK reads our files
+          imagemagick ffmpeg)  # sablier render --gif / --mp4, and their test
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

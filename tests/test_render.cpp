@@ -342,5 +342,31 @@ TEST(RenderCli, AnimationsCallTheirToolWithTheFrames) {
   fs::remove_all(dir);
 }
 
+// With Debian's ImageMagick and ffmpeg installed (scripts/setup.sh installs
+// both), the animations are real files: a GIF with one image per frame and
+// an H.264 MP4 with as many video frames, read back by the tools' own
+// readers (identify, ffprobe). Skipped, saying why, where they are absent.
+TEST(RenderCli, AnimationsAreRealWithDebianTools) {
+  for (const char* tool : {"convert", "identify", "ffmpeg", "ffprobe"})
+    if (shell(std::string("command -v ") + tool).code != 0)
+      GTEST_SKIP() << tool << " is not installed (apt-get install imagemagick ffmpeg)";
+  const fs::path dir = tiny_run("anim_real");  // frames 0, 1, 2
+  const Result r = sablier("render " + dir.string() + " --width 64 --height 47 --gif --mp4");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path gif = dir / "images" / "animation.gif";
+  const fs::path mp4 = dir / "images" / "animation.mp4";
+  EXPECT_EQ(read_file(gif.string()).rfind("GIF89a", 0), 0u);
+  const Result frames = shell("identify -format '%wx%h\n' " + gif.string());
+  ASSERT_EQ(frames.code, 0) << frames.output;
+  EXPECT_EQ(frames.output, "64x47\n64x47\n64x47\n");
+  const Result probe = shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                             "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " +
+                             mp4.string());
+  ASSERT_EQ(probe.code, 0) << probe.output;
+  // The odd height is padded to an even one, as H.264 requires.
+  EXPECT_EQ(probe.output, "h264,64,48,3\n");
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace sablier
