@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   CLI::App* render_cmd = app.add_subcommand("render", "Draw a run's frames as PNG pictures");
   render_cmd->add_option("dir", render.dir, "Output folder of a run")->required();
   render_cmd->add_option("--color", render.color, "speed | pressure | phi | shear_rate | id");
-  render_cmd->add_option("--view", render.view, "3D view: front | side | top | iso");
+  render_cmd->add_option("--view", render.view, "3D view: front | side | top | iso | AZIMUTH,ELEVATION (degrees)");
   render_cmd->add_option("--width", render.width, "Picture width in pixels (default 800)");
   render_cmd->add_option("--height", render.height, "Picture height (default: fits the domain)");
   render_cmd->add_option("--frames", render.frames, "all | last | a frame number");

@@ -170,7 +170,9 @@ RenderOptions parse_render_options(const RenderCommandOptions& o) {
     throw BadInput("--color: unknown attribute \"" + o.color +
                    "\"; allowed: speed, pressure, phi, shear_rate, id");
   if (!parse_view(o.view, &opt.view))
-    throw BadInput("--view: unknown view \"" + o.view + "\"; allowed: front, side, top, iso");
+    throw BadInput("--view: unknown view \"" + o.view +
+                   "\"; allowed: front, side, top, iso, or AZIMUTH,ELEVATION in degrees "
+                   "(elevation from -90 to 90)");
   if (o.width < 16 || o.width > 8192) throw BadInput("--width: must be 16 to 8192 pixels");
   if (o.height != 0 && (o.height < 16 || o.height > 8192))
     throw BadInput("--height: must be 16 to 8192 pixels");

@@ -184,7 +184,7 @@ bool ink_near(const Canvas& c, const Camera::Point& p) {
 TEST(Render, ThreeDFramesShowTheBoxAndShadedGrains) {
   const ParticleFrame f = small_3d_block();
   const Box box = unit_box(3, 1.0, 0.1, 0.25);
-  for (View view : {View::front, View::side, View::top, View::iso}) {
+  for (View view : {View::front(), View::side(), View::top(), View::iso(), View{-120.0, 55.0}}) {
     RenderOptions opt;
     opt.view = view, opt.color = ColorBy::id, opt.width = 500;
     opt.height = auto_height(box, view, opt.width);
@@ -193,11 +193,42 @@ TEST(Render, ThreeDFramesShowTheBoxAndShadedGrains) {
     // Every corner of the box is on a drawn edge (no grain hides them here).
     for (int corner = 0; corner < 8; ++corner) {
       const double p[3] = {corner & 1 ? 1.0 : 0.0, corner & 2 ? 0.1 : 0.0, corner & 4 ? 0.25 : 0.0};
-      EXPECT_TRUE(ink_near(c, cam.project(p))) << "view " << int(view) << " corner " << corner;
+      EXPECT_TRUE(ink_near(c, cam.project(p))) << "view " << view.azimuth << "," << view.elevation << " corner " << corner;
     }
     // The grains are drawn, shaded: not background at the first grain's centre.
     const Camera::Point g = cam.project(&f.position[0]);
     EXPECT_NE(c.at(static_cast<int>(g.x), static_cast<int>(g.y)), kBackground);
+  }
+}
+
+// Views by name or by explicit angles: "30,30" is the iso view, "0,90" the
+// top view; malformed angles and elevations beyond the poles are refused.
+TEST(Render, ViewsByNameOrAngles) {
+  View v;
+  ASSERT_TRUE(parse_view("iso", &v));
+  EXPECT_EQ(v.azimuth, 30.0);
+  EXPECT_EQ(v.elevation, 30.0);
+  ASSERT_TRUE(parse_view("-37.5,12", &v));
+  EXPECT_EQ(v.azimuth, -37.5);
+  EXPECT_EQ(v.elevation, 12.0);
+  for (const char* bad : {"", "30", "30,", ",30", "a,b", "0,91", "0,-90.5", "nan,0", "0,inf", "1,2,3"})
+    EXPECT_FALSE(parse_view(bad, &v)) << '"' << bad << '"';
+  // The same picture from the name and from its angles.
+  const ParticleFrame f = small_3d_block();
+  const Box box = unit_box(3, 1.0, 0.1, 0.25);
+  for (const auto& [name, angles] : {std::pair<const char*, const char*>{"iso", "30,30"},
+                                     {"top", "0,90"}, {"side", "-90,0"}}) {
+    RenderOptions a, b;
+    ASSERT_TRUE(parse_view(name, &a.view));
+    ASSERT_TRUE(parse_view(angles, &b.view));
+    a.width = b.width = 300;
+    a.height = b.height = auto_height(box, a.view, 300);
+    EXPECT_EQ(auto_height(box, b.view, 300), a.height) << name;
+    const Canvas ca = render_frame(f, box, {0.0, 7.0}, a), cb = render_frame(f, box, {0.0, 7.0}, b);
+    int differ = 0;
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x) differ += !(ca.at(x, y) == cb.at(x, y));
+    EXPECT_EQ(differ, 0) << name;
   }
 }
 
@@ -294,6 +325,8 @@ TEST(RenderCli, BadInputsExitTwoWithOneLine) {
   expect_one_line_error(sablier("render " + dir.string() + " --color temperature"),
                         "unknown attribute \"temperature\"");
   expect_one_line_error(sablier("render " + dir.string() + " --view under"), "unknown view");
+  expect_one_line_error(sablier("render " + dir.string() + " --view 10,95"),
+                        "AZIMUTH,ELEVATION in degrees (elevation from -90 to 90)");
   expect_one_line_error(sablier("render " + dir.string() + " --frames 7"), "no frame 7");
   expect_one_line_error(sablier("render " + dir.string() + " --frames first"), "--frames");
   expect_one_line_error(sablier("render " + dir.string() + " --width 3"), "--width");

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <limits>
 #include <vector>
@@ -49,31 +50,12 @@ Layout layout(int width, int height) {
 
 // Screen axes of a view: right, up, and the direction towards the viewer.
 void view_axes(View view, double right[3], double up[3], double back[3]) {
-  double f[3] = {0.0, 1.0, 0.0};  // looking direction; front: along +y
-  switch (view) {
-    case View::front:
-      break;
-    case View::side:
-      f[0] = -1, f[1] = 0, f[2] = 0;
-      break;
-    case View::top:
-      f[0] = 0, f[1] = 0, f[2] = -1;
-      break;
-    case View::iso: {
-      // A 3/4 view from the front left, 30 degrees up and 30 degrees round.
-      const double az = kPi / 6, el = kPi / 6;
-      f[0] = std::cos(el) * std::sin(az), f[1] = std::cos(el) * std::cos(az), f[2] = -std::sin(el);
-      break;
-    }
-  }
-  // right = f x z, or +x when looking straight down.
-  double r[3] = {f[1], -f[0], 0.0};
-  const double n = std::hypot(r[0], r[1]);
-  if (n < 1e-12) {
-    r[0] = 1, r[1] = 0;
-  } else {
-    r[0] /= n, r[1] /= n;
-  }
+  const double az = view.azimuth * kPi / 180.0, el = view.elevation * kPi / 180.0;
+  // The looking direction.
+  const double f[3] = {std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), -std::sin(el)};
+  // right = f x z normalised, which is (cos az, -sin az, 0) for any
+  // elevation in [-90, 90] (and stays defined looking straight down).
+  const double r[3] = {std::cos(az), -std::sin(az), 0.0};
   for (int a = 0; a < 3; ++a) right[a] = r[a], back[a] = -f[a];
   up[0] = r[1] * f[2] - r[2] * f[1];
   up[1] = r[2] * f[0] - r[0] * f[2];
@@ -130,11 +112,24 @@ bool parse_color_by(const std::string& name, ColorBy* out) {
 }
 
 bool parse_view(const std::string& name, View* out) {
-  static const std::pair<const char*, View> names[] = {
-      {"front", View::front}, {"side", View::side}, {"top", View::top}, {"iso", View::iso}};
+  static const std::pair<const char*, View> names[] = {{"front", View::front()},
+                                                       {"side", View::side()},
+                                                       {"top", View::top()},
+                                                       {"iso", View::iso()}};
   for (const auto& [n, v] : names)
     if (name == n) return *out = v, true;
-  return false;
+  // "AZIMUTH,ELEVATION" in degrees.
+  const std::size_t comma = name.find(',');
+  if (comma == std::string::npos) return false;
+  const std::string a = name.substr(0, comma), e = name.substr(comma + 1);
+  char* end = nullptr;
+  const double az = std::strtod(a.c_str(), &end);
+  if (a.empty() || *end != '\0') return false;
+  const double el = std::strtod(e.c_str(), &end);
+  if (e.empty() || *end != '\0') return false;
+  if (!std::isfinite(az) || !std::isfinite(el) || el < -90.0 || el > 90.0) return false;
+  *out = View{az, el};
+  return true;
 }
 
 std::string color_by_label(ColorBy c) {

@@ -12,10 +12,24 @@
 namespace sablier {
 
 enum class ColorBy { speed, pressure, phi, shear_rate, id };
-enum class View { front, side, top, iso };
+// A 3D view: orthographic, looking along the direction with `azimuth`
+// degrees about +z (0 looks along +y, from the front; -90 along -x, from the
+// +x side) and `elevation` degrees down from the horizontal (90 looks
+// straight down). The named views are front (0, 0), side (-90, 0), top
+// (0, 90) and iso (30, 30).
+struct View {
+  double azimuth = 0.0;
+  double elevation = 0.0;
+  static View front() { return {0.0, 0.0}; }
+  static View side() { return {-90.0, 0.0}; }
+  static View top() { return {0.0, 90.0}; }
+  static View iso() { return {30.0, 30.0}; }
+};
 
 // Names as the command line spells them; false when unknown.
 bool parse_color_by(const std::string& name, ColorBy* out);
+// A view's name, or "AZIMUTH,ELEVATION" in degrees (finite, elevation in
+// [-90, 90]).
 bool parse_view(const std::string& name, View* out);
 // The colour bar's caption, with the unit: "speed m/s".
 std::string color_by_label(ColorBy c);
@@ -50,7 +64,7 @@ Range finish_range(Range range, ColorBy c);
 
 struct RenderOptions {
   ColorBy color = ColorBy::speed;
-  View view = View::front;
+  View view = View::front();
   int width = 800;
   int height = 0;  // 0: from the box's aspect ratio (auto_height)
 };
