@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <cstdio>
+
+#include <png.h>
+#include <zlib.h>
 #include <fmt/format.h>
 
 #include "commands.hpp"
@@ -107,6 +110,18 @@ int info_command() {
 #endif
   std::printf("openmp     %d threads (set OMP_NUM_THREADS or --threads)\n", omp_get_max_threads());
   std::printf("dimensions 2, 3\n");
+#if defined(__AVX2__) && defined(__FMA__)
+  std::printf("simd       AVX2, FMA\n");
+#elif defined(__SSE2__)
+  std::printf("simd       SSE2\n");
+#endif
+  std::printf("outputs    vtp (zlib %s with --compress), csv, ply, vti (--grid), series.pvd\n",
+              ZLIB_VERSION);
+  std::printf("pictures   png (libpng %s)\n", PNG_LIBPNG_VER_STRING);
+  const bool gif = tool_present("convert"), mp4 = tool_present("ffmpeg");
+  std::printf("animations gif %s, mp4 %s\n",
+              gif ? "(ImageMagick convert)" : "unavailable (apt-get install imagemagick)",
+              mp4 ? "(ffmpeg)" : "unavailable (apt-get install ffmpeg)");
   return 0;
 }
 

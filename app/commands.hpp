@@ -30,6 +30,10 @@ extern const char* const kParticleFormats[3];
 // all are known.
 std::string parse_formats(const std::string& list, std::vector<std::string>& formats);
 
+// True when the program `tool` is on PATH and answers `tool -version`
+// (ImageMagick's convert, ffmpeg).
+bool tool_present(const char* tool);
+
 // `sablier render DIR`: PNG pictures of a run's frames.
 struct RenderCommandOptions {
   std::string dir;

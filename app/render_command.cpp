@@ -118,12 +118,6 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
-bool tool_present(const char* tool) {
-  // `-version` exits 0 only for the real program (a stand-in that merely
-  // shares the name must not count).
-  return std::system(fmt::format("{} -version >/dev/null 2>&1", tool).c_str()) == 0;
-}
-
 void check_tools(const RenderCommandOptions& o) {
   if (o.gif && !tool_present("convert"))
     throw BadInput(
@@ -246,6 +240,12 @@ int plot_command(const PlotCommandOptions& o) {
   }
   std::printf("wrote %s (%zu steps)\n", out.c_str(), stats.time.size());
   return 0;
+}
+
+// `-version` exits 0 only for the real program (a stand-in that merely
+// shares the name must not count).
+bool tool_present(const char* tool) {
+  return std::system(fmt::format("{} -version >/dev/null 2>&1", tool).c_str()) == 0;
 }
 
 }  // namespace sablier

@@ -91,6 +91,15 @@ TEST(Cli, CheckAndInfo) {
   r = sablier("info");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.output.find("openmp"), std::string::npos);
+  EXPECT_NE(r.output.find("pictures   png (libpng 1."), std::string::npos) << r.output;
+  // Without a PATH neither animation tool can be found, and info says how
+  // to get them.
+  r = test::shell(std::string("PATH=/nonexistent ") + SABLIER_BINARY + " info");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("gif unavailable (apt-get install imagemagick), mp4 unavailable "
+                          "(apt-get install ffmpeg)"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace
