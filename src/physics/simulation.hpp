@@ -30,11 +30,18 @@ struct StepInfo {
   StepTimings timings;
   int active_nodes = 0;  // stress rows (= velocity nodes of cells holding particles)
   int viscous_iterations = 0;
-  double restoring_work = 0.0;  // J: energy the decompaction of over-full nodes may add
+  // J: bound on the energy the decompaction of over-full nodes may add this
+  // step, 2 dt sum_j max(0, -lambda_N k_j) over k_j < 0.
+  double restoring_work = 0.0;
 };
 
 // Fraction of a node's excess volume fraction removed per step (see build_rows).
 constexpr double kOverfullRelaxation = 0.1;
+// A node whose grain volume is at least this fraction of phi_max V_j belongs
+// to the dense phase: it carries its grains' cohesion and does not compact
+// (see build_rows). A node on a flat free surface is half full, one at a
+// convex corner a quarter full.
+constexpr double kCohesiveFill = 0.4;
 
 // Particles created from the scene's [[sand]] regions (METHOD.md step 1:
 // n particles per cell and per axis, V_p = phi_max h^d / n^d).
