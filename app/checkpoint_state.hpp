@@ -84,10 +84,11 @@ Simulation<D> restore_simulation(const SceneConfig& scene, const Checkpoint& c,
   p.phi = c.phi;
   p.shear_rate = c.shear_rate;
   Simulation<D> sim(scene, std::move(p));
-  const auto nodes = static_cast<std::uint64_t>(sim.grid().node_count());
+  // One warm-start stress per grid node, and one more per node with obstacles.
+  const auto nodes = static_cast<std::uint64_t>(sim.warm_start().size());
   if (c.nodes != nodes)
     throw CheckpointError(source + ": holds " + std::to_string(c.nodes) +
-                          " grid nodes, the scene's grid has " + std::to_string(nodes) +
+                          " warm-start stresses, the scene's grid needs " + std::to_string(nodes) +
                           "; cannot resume");
   sim.restore_clock(c.time, c.steps, detail::unflatten<SymVec<D>>(c.warm_stress));
   return sim;

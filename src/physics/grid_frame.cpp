@@ -73,7 +73,7 @@ GridFrame Simulation<D>::grid_frame() const {
   }
   // problem_.node[j] is the velocity index of row j's node: rows sit on the
   // corners of cells holding particles, so always on real nodes.
-  for (int j = 0; j < problem_.rows(); ++j) {
+  for (int j = 0; j < obstacle_row_start_; ++j) {  // sand rows
     const std::int64_t node = problem_.node[j];
     const std::size_t i = frame_index<D>(grid_.node_coords(node), g);
     g.active[i] = 1;

@@ -50,7 +50,8 @@ Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
   node_mass_.assign(nodes, 0.0);
   node_momentum_.assign(nodes, Vec<D>::Zero());
   row_of_node_.assign(nodes, -1);
-  warm_lambda_.assign(nodes, SymVec<D>::Zero());
+  obstacles_ = make_obstacles<D>(scene);
+  warm_lambda_.assign(obstacles_.empty() ? nodes : 2 * nodes, SymVec<D>::Zero());
   problem_.velocity.assign(nodes, Vec<D>::Zero());
   problem_.inv_mass.assign(nodes, Vec<D>::Zero());
   problem_.stencil = grid_.stencil_offsets();
@@ -96,13 +97,18 @@ void Simulation<D>::build_rows(double dt) {
   ConeProblem<D>& P = problem_;
   const int rows = P.rows();
   const double inv_trace_dt = 1.0 / (trace_scale<D>() * dt);
+  const int sand_rows = obstacle_row_start_;
+  const bool with_obstacles = !obstacles_.empty();
 #pragma omp parallel for schedule(static)
-  for (int j = 0; j < rows; ++j) {
+  for (int j = 0; j < sand_rows; ++j) {
     const std::int64_t node = P.node[j];
     const double vj = grid_.node_volume(grid_.node_coords(node));
     const double phi_j = node_grain_volume_[node];
     P.volume[j] = vj;
-    const double room = phi_max_ * vj - phi_j;
+    // An obstacle's volume counts as grains (METHOD.md section 3): sand
+    // cannot compact into it.
+    const double solid = with_obstacles ? phi_max_ * vj * row_solid_[j] : 0.0;
+    const double room = phi_max_ * vj - phi_j - solid;
     const double a = cone_aperture<D>(row_mu_sum_[j] / phi_j);
     P.aperture[j] = a;
     // Cohesion (the mean of the node's grains) acts only in the dense phase,
@@ -117,6 +123,28 @@ void Simulation<D>::build_rows(double dt) {
     P.cohesion[j] = cohesive ? c / a : 0.0;
     P.k[j] = (room > 0.0 ? (cohesive ? 0.0 : room) : kOverfullRelaxation * room) * inv_trace_dt;
     P.lambda[j] = warm_lambda_[node];
+  }
+  // Obstacle rows: (lambda_RB ; gamma_RB) in DP(mu_RB) with gamma_RB =
+  // sym(u n^T) / h, so coupling V_j n / h on the row's own node only, no
+  // phi_max term and no cohesion. In the separation case u.n >= 0 (the sand
+  // leaves the surface); otherwise u.n = 0 with Coulomb friction mu_RB
+  // (supplement, section 3). The solver treats them as contact rows
+  // (cone_problem.hpp): a Coulomb cone on the traction, aperture mu_RB.
+  const double h = grid_.h();
+  const std::int64_t nodes = grid_.node_count();
+  constexpr int centre = ConeProblem<D>::NS / 2;
+#pragma omp parallel for schedule(static)
+  for (int j = sand_rows; j < rows; ++j) {
+    const std::int64_t node = P.node[j];
+    const double vj = grid_.node_volume(grid_.node_coords(node));
+    const int o = j - sand_rows;
+    P.volume[j] = vj;
+    P.k[j] = 0.0;
+    P.aperture[j] = obstacles_[obstacle_index_[o]].mu;  // Coulomb cone on the traction
+    P.cohesion[j] = 0.0;
+    P.coupling[j].setZero();
+    P.coupling[j].col(centre) = (vj / h) * obstacle_normal_[o];
+    P.lambda[j] = warm_lambda_[nodes + node];
   }
 }
 
@@ -172,11 +200,22 @@ StepInfo Simulation<D>::step(double dt) {
 
   t0 = Clock::now();
   std::fill(warm_lambda_.begin(), warm_lambda_.end(), SymVec<D>::Zero());
-  for (int j = 0; j < problem_.rows(); ++j) warm_lambda_[problem_.node[j]] = problem_.lambda[j];
+  for (int j = 0; j < obstacle_row_start_; ++j) warm_lambda_[problem_.node[j]] = problem_.lambda[j];
+  // The obstacles feel the opposite of the force their rows put on the sand,
+  // f = Lambda_j g_j (cone_problem.hpp).
+  info.obstacle_force.assign(obstacles_.size(), Vec3d{0, 0, 0});
+  const std::int64_t nodes = grid_.node_count();
+  constexpr int centre = ConeProblem<D>::NS / 2;
+  for (int j = obstacle_row_start_; j < problem_.rows(); ++j) {
+    warm_lambda_[nodes + problem_.node[j]] = problem_.lambda[j];
+    const Vec<D> f = from_sym<D>(problem_.lambda[j]) * problem_.coupling[j].col(centre);
+    Vec3d& total = info.obstacle_force[obstacle_index_[j - obstacle_row_start_]];
+    for (int a = 0; a < D; ++a) total[a] -= f[a];
+  }
   transfer_to_particles(dt);
   info.timings.advection = seconds_since(t0);
 
-  info.active_nodes = problem_.rows();
+  info.active_nodes = obstacle_row_start_;  // sand nodes (obstacle rows are extra)
   const double start = time_;
   time_ += dt;
   ++steps_;

@@ -10,6 +10,7 @@
 #include "io/grid_frame.hpp"
 #include "io/particle_frame.hpp"
 #include "physics/material.hpp"
+#include "physics/obstacle.hpp"
 #include "scene/scene.hpp"
 #include "solver/cone_problem.hpp"
 
@@ -33,6 +34,9 @@ struct StepInfo {
   // J: bound on the energy the decompaction of over-full nodes may add this
   // step, 2 dt sum_j max(0, -lambda_N k_j) over k_j < 0.
   double restoring_work = 0.0;
+  // Force the sand exerts on each [[obstacle]] over the step (N; N/m in 2D),
+  // the reaction to the obstacle rows' stresses.
+  std::vector<Vec3d> obstacle_force;
 };
 
 // Fraction of a node's excess volume fraction removed per step (see build_rows).
@@ -71,6 +75,9 @@ class Simulation {
   const ConeProblem<D>& problem() const { return problem_; }
 
   const std::vector<Material>& materials() const { return materials_; }
+  const std::vector<Obstacle<D>>& obstacles() const { return obstacles_; }
+  // First stress row of the obstacles (rows before it are the sand's nodes).
+  int first_obstacle_row() const { return obstacle_row_start_; }
 
   // Diagnostics (SI), from the particles, each with its own density rho_p.
   double kinetic_energy() const;    // sum 1/2 rho_p V_p |u_p|^2
@@ -87,8 +94,9 @@ class Simulation {
 
   // Checkpointing (app/checkpoint_state.hpp). Besides the scene and the
   // particles, the future depends on the clock and on the warm start of the
-  // next solve: last step's stresses per grid node. Everything else is
-  // rebuilt from these at the start of each step.
+  // next solve: last step's stresses per grid node (then, with obstacles,
+  // the obstacle rows' stresses per grid node). Everything else is rebuilt
+  // from these at the start of each step.
   const std::vector<SymVec<D>>& warm_start() const { return warm_lambda_; }
   void restore_clock(double time, std::int64_t steps, std::vector<SymVec<D>> warm_start) {
     time_ = time;
@@ -135,6 +143,15 @@ class Simulation {
   std::vector<int> row_of_node_;      // stress row index or -1
   std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start
   std::vector<double> row_mu_sum_, row_cohesion_sum_;  // sum_p V_p N_j (mu_p, c_p)
+
+  // Obstacles (METHOD.md section 3): rows [obstacle_row_start_, rows) are
+  // nodes within one cell of an obstacle, with that obstacle's outward
+  // normal; the sand rows' nodes carry the solid's share of their volume.
+  std::vector<Obstacle<D>> obstacles_;
+  int obstacle_row_start_ = 0;
+  std::vector<Vec<D>> obstacle_normal_;  // per obstacle row
+  std::vector<int> obstacle_index_;      // per obstacle row: which [[obstacle]]
+  std::vector<double> row_solid_;        // per sand row: solid fraction of V_j
 
   ConeProblem<D> problem_;
 };

@@ -76,6 +76,32 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
     rows += static_cast<int>(list.size());
     P.colour_start.push_back(rows);
   }
+  // Obstacle rows (METHOD.md section 3): every sand node within one cell of
+  // an obstacle gets a second row pairing the obstacle's contact stress with
+  // gamma_RB = sym(u n^T) / h. Such a row touches only its own node, but
+  // Gauss-Seidel writes a row's whole stencil, so they take the same 3^d
+  // colours, after the sand's.
+  const double h = grid_.h();
+  const int sand_rows = rows;
+  std::vector<std::vector<std::int64_t>> obstacle_by_colour;
+  std::vector<double> solid(sand_rows, 0.0);
+  if (!obstacles_.empty()) {
+    obstacle_by_colour.resize(by_colour.size());
+    int r = 0;
+    for (std::size_t colour = 0; colour < by_colour.size(); ++colour)
+      for (std::int64_t node : by_colour[colour]) {
+        const auto nc = grid_.node_coords(node);
+        Vec<D> x, n;
+        for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
+        const double dist = obstacle_distance(obstacles_, x, &n);
+        solid[r++] = solid_fraction(dist, h);
+        if (dist < h) obstacle_by_colour[colour].push_back(node);
+      }
+    for (const auto& list : obstacle_by_colour) {
+      rows += static_cast<int>(list.size());
+      P.colour_start.push_back(rows);
+    }
+  }
   P.resize_rows(rows);
   int r = 0;
   for (const auto& list : by_colour)
@@ -85,6 +111,26 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
       P.coupling[r].setZero();
       ++r;
     }
+  obstacle_row_start_ = sand_rows;
+  P.first_contact = sand_rows;
+  P.contact_frame.clear();
+  obstacle_normal_.clear();
+  obstacle_index_.clear();
+  for (const auto& list : obstacle_by_colour)
+    for (std::int64_t node : list) {
+      const auto nc = grid_.node_coords(node);
+      Vec<D> x, n;
+      for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
+      int which = 0;
+      obstacle_distance(obstacles_, x, &n, &which);
+      P.node[r] = node;
+      P.coupling[r].setZero();
+      obstacle_normal_.push_back(n);
+      obstacle_index_.push_back(which);
+      P.contact_frame.push_back(contact_frame<D>(n));
+      ++r;
+    }
+  row_solid_ = std::move(solid);
   row_mu_sum_.assign(rows, 0.0);
   row_cohesion_sum_.assign(rows, 0.0);
 
@@ -93,7 +139,6 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   // Each particle brings its own material (material.hpp): its density to the
   // mass and momentum, its friction to the row's phi-weighted mean; the
   // grain volume Phi_i and the coupling vectors g_ji take V_p alone.
-  const double h = grid_.h();
   const Material* mats = materials_.data();
   for (const auto& cells : cells_by_parity_) {
     const std::int64_t ncells = static_cast<std::int64_t>(cells.size());
@@ -205,6 +250,14 @@ void Simulation<D>::transfer_to_particles(double dt) {
       const double upper = cells[a] * h;
       if (x[a] < 0.0 && !leaves_through_free_face(a, 0, x)) x[a] = 1e-6 * h;
       if (x[a] > upper && !leaves_through_free_face(a, 1, x)) x[a] = upper - 1e-6 * h;
+    }
+    // A grain the interpolated velocity carried into an obstacle is put
+    // back on its surface (the grid velocity keeps nodes out, not points
+    // between them).
+    if (!obstacles_.empty()) {
+      Vec<D> normal;
+      const double dist = obstacle_distance(obstacles_, x, &normal);
+      if (dist < 0.0) x -= (dist - 1e-6 * h) * normal;
     }
   }
   if (bad != std::numeric_limits<std::int64_t>::max())

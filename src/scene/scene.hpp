@@ -126,6 +126,29 @@ struct SpoutConfig {
   double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
 };
 
+// An [[obstacle]] block: a fixed solid that sand cannot enter and slides on
+// with Coulomb friction `mu` (METHOD.md section 3; physics/obstacle.hpp).
+// "disk" (2D) and "sphere" (3D) are both Ball; Cylinder is 3D only (axis
+// along z, `center` the centre of its base). A plane's solid side is the one
+// its normal points away from.
+enum class ObstacleShape { Plane, Box, Ball, Cylinder };
+
+struct ObstacleConfig {
+  ObstacleShape shape = ObstacleShape::Plane;
+  Vec3d point{0, 0, 0};   // plane: a point on it, m
+  Vec3d normal{0, 1, 0};  // plane: unit normal pointing into the sand (normalised by the parser)
+  Vec3d min{0, 0, 0};     // box, m
+  Vec3d max{0, 0, 0};     // box, m
+  Vec3d center{0, 0, 0};  // ball: centre; cylinder: centre of the base, m
+  double radius = 0.0;    // ball / cylinder, m
+  double height = 0.0;    // cylinder, m
+  double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
+};
+
+// Above this friction the obstacle's cone would let it pull on the sand
+// (METHOD.md section 3: Signorini holds for an aperture below 1/sqrt(3)).
+constexpr double kMaxObstacleMu = 0.7;
+
 struct SceneConfig {
   std::string source;  // file name, for messages
   int dimension = 2;
@@ -138,6 +161,7 @@ struct SceneConfig {
   BoundaryConfig boundary;
   std::vector<SandConfig> sand;
   std::vector<SpoutConfig> spouts;
+  std::vector<ObstacleConfig> obstacles;
   std::uint64_t seed = 0;
 
   double cell_size() const { return size[0] / resolution[0]; }

@@ -46,11 +46,41 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   }
 }
 
+// One exact local update of contact row j (cone_problem.hpp): the Coulomb
+// problem y = W r + b, y = F^T u the node's velocity in the contact frame.
+template <int D>
+inline void update_contact_row(ConeProblem<D>& p, int j) {
+  const int c = j - p.first_contact;
+  const LocalDelassus<D>& W = p.contact_delassus[c];
+  if (W.degenerate) {
+    p.state[j] = DPCase::Inactive;
+    return;
+  }
+  const Mat<D>& F = p.contact_frame[c];
+  const Vec<D> n = F.col(0);
+  const Vec<D> r_old = F.transpose() * (from_sym<D>(p.lambda[j]) * n);
+  const Vec<D> x_old = W.rotate(r_old);
+  const Vec<D> b = W.rotate(F.transpose() * p.velocity[p.node[j]]) - W.apply_rotated(x_old);
+  Vec<D> x;
+  p.state[j] = solve_drucker_prager_rotated<D>(W, b, p.aperture[j], x, p.beta[j]);
+  const Vec<D> dr = W.unrotate(x - x_old);
+  if (dr.squaredNorm() == 0.0) return;
+  const Vec<D> t = F.template rightCols<D - 1>() * dr.template tail<D - 1>();
+  const Mat<D> dL = dr[0] * Mat<D>::Identity() + t * n.transpose() + n * t.transpose();
+  const SymVec<D> dl = to_sym<D>(dL);
+  scatter_stress<D>(p, j, dl);
+  p.lambda[j] += dl;
+}
+
 // One exact local update of row j.
 template <int D>
 inline void update_row(ConeProblem<D>& p, int j) {
   constexpr int SD = sym_size(D);
   using V = Eigen::Matrix<double, SD, 1>;
+  if (j >= p.first_contact) {
+    update_contact_row<D>(p, j);
+    return;
+  }
   const LocalDelassus<SD>& W = p.delassus[j];
   if (W.degenerate) {
     p.state[j] = DPCase::Inactive;
@@ -275,6 +305,17 @@ void assemble_delassus(ConeProblem<D>& p) {
     }
     p.delassus[j].set(0.5 * (W + W.transpose()));
   }
+  // Contact rows: W_c = w F^T M^{-1} F on the row's own node, w = |g_jj|.
+  const int first = std::min(p.first_contact, n);
+  p.contact_delassus.resize(n - first);
+  constexpr int centre = ConeProblem<D>::NS / 2;
+#pragma omp parallel for schedule(static)
+  for (int j = first; j < n; ++j) {
+    const Mat<D>& F = p.contact_frame[j - first];
+    const double w = p.coupling[j].col(centre).norm();
+    const Mat<D> Wc = w * F.transpose() * p.inv_mass[p.node[j]].asDiagonal() * F;
+    p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
+  }
 }
 
 template <int D>
@@ -283,8 +324,7 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
   for (int c = 0; c < ncol; ++c) {
 #pragma omp parallel for schedule(static)
     for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) {
-      if (!p.delassus[j].degenerate && p.lambda[j].squaredNorm() > 0.0)
-        scatter_stress<D>(p, j, p.lambda[j]);
+      if (p.lambda[j].squaredNorm() > 0.0) scatter_stress<D>(p, j, p.lambda[j]);
     }
   }
 }

@@ -63,6 +63,20 @@ struct ConeProblem {
   std::vector<DPCase> state;
   std::vector<double> beta;           // plastic multiplier of the last local solve (guess for the next)
 
+  // Contact rows (frictional obstacles, METHOD.md section 3): rows
+  // [first_contact, rows()) act on their own node only (coupling: the centre
+  // column w n, n the obstacle's normal pointing into the sand) and are solved
+  // as a Coulomb problem on the traction r = (r_N, r_T) in the orthonormal
+  // frame contact_frame (first column n): |r_T| <= aperture r_N with
+  // aperture = mu_RB itself. Their stress is Lambda(r) = r_N I + t n^T + n t^T
+  // (t = sum_k r_Tk f_k), whose traction Lambda n is r; for it the cone of
+  // DP(mu_RB) is exactly Coulomb's, |Dev Lambda| = |t| <= mu_RB r_N (METHOD.md
+  // section 4), and no stress component is left in the coupling's null space
+  // for the local solve to choose.
+  int first_contact = 0;
+  std::vector<Mat<D>> contact_frame;              // per contact row j - first_contact
+  std::vector<LocalDelassus<D>> contact_delassus;  // per contact row: w F^T M^{-1} F
+
   int rows() const { return static_cast<int>(node.size()); }
   void resize_rows(int n);
 };

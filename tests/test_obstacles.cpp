@@ -1,0 +1,140 @@
+// Frictional obstacles (METHOD.md section 3; supplement, section 3): extra
+// stress rows on the nodes an obstacle touches, (lambda_RB ; gamma_RB) in
+// DP(mu_RB) with gamma_RB = sym(u n^T) / h. The supplement shows this is the
+// Signorini condition (no interpenetration, no adhesion) with exact Coulomb
+// friction mu_RB when sliding. Checked here against statics (the obstacle
+// carries the sand's weight) and a block sliding on an incline, whose
+// acceleration is g (sin theta - mu_RB cos theta).
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "physics/simulation.hpp"
+#include "scene/scene.hpp"
+#include "test_support.hpp"
+
+namespace sablier {
+namespace {
+
+// One thread: results do not depend on the thread count, and ctest runs
+// test programs side by side on few cores.
+struct OneThread : testing::Environment {
+  void SetUp() override { omp_set_num_threads(1); }
+};
+const testing::Environment* const kOneThread = testing::AddGlobalTestEnvironment(new OneThread);
+
+using test::run_until;
+using test::scene;
+
+ObstacleConfig plane(const Vec3d& point, const Vec3d& normal, double mu) {
+  ObstacleConfig o;
+  o.shape = ObstacleShape::Plane;
+  o.point = point;
+  o.normal = normal;
+  o.mu = mu;
+  return o;
+}
+
+template <int D>
+double lowest_height(const Simulation<D>& sim) {
+  double low = 1e300;
+  for (const Vec<D>& x : sim.particles().position) low = std::min(low, x[D - 1]);
+  return low;
+}
+
+// A 10 cm bed resting on a plane obstacle that lies between grid nodes
+// (y = 4.5 cm at 1 cm cells), above the domain's floor: after 0.5 s the
+// bed is at rest, no grain is below the plane, and the force the sand puts
+// on the obstacle balances the sand's weight (statics: the frictionless
+// side walls carry no vertical load; the horizontal force is not fixed, a
+// rigid-plastic bed being statically indeterminate).
+template <int D>
+void bed_on_plane(SceneConfig s) {
+  s.obstacles.push_back(plane(D == 2 ? Vec3d{0, 0.045, 0} : Vec3d{0, 0, 0.045},
+                              D == 2 ? Vec3d{0, 1, 0} : Vec3d{0, 0, 1}, 0.5));
+  Simulation<D> sim(s);
+  StepInfo last;
+  while (sim.time() < 0.5 - 1e-12) {
+    last = sim.step(sim.adaptive_dt(0.5 - sim.time()));
+    ASSERT_TRUE(last.solve.residual <= s.solver.tolerance || last.solve.hit_cap);
+  }
+  const double weight = sim.grain_mass() * 9.81;
+  ASSERT_EQ(last.obstacle_force.size(), 1u);
+  const double vertical = last.obstacle_force[0][D - 1];
+  std::cout << D << "D bed on a plane: force on the obstacle " << vertical << " against weight "
+            << -weight << " (" << 100 * (-vertical / weight - 1) << "%), max speed "
+            << sim.max_speed() << " m/s, lowest grain " << lowest_height(sim) << " m\n";
+  EXPECT_NEAR(-vertical / weight, 1.0, 0.02);
+  EXPECT_LT(sim.max_speed(), 1e-3);
+  EXPECT_GE(lowest_height(sim), 0.045);
+}
+
+TEST(Obstacles, BedRestsOnAPlane2D) {
+  bed_on_plane<2>(scene("bed2d.toml", {"grid.size=[0.4,0.3]", "grid.resolution=[40,30]",
+                                       "sand.0.min=[0.0,0.045]", "sand.0.max=[0.4,0.145]"}));
+}
+
+TEST(Obstacles, BedRestsOnAPlane3D) {
+  bed_on_plane<3>(scene("bed3d.toml", {"grid.size=[0.2,0.1,0.2]", "grid.resolution=[20,10,20]",
+                                       "sand.0.min=[0.0,0.0,0.045]",
+                                       "sand.0.max=[0.2,0.1,0.145]"}));
+}
+
+// A 30 x 4 cm block on a plane obstacle under gravity tilted by theta = 20
+// degrees (the plane is the incline). The block is cohesive (5 kPa), so
+// that its free ends stand (cohesionless, their vertical faces would slump
+// and move the sand whatever the base does) and it moves as a rigid block.
+// With mu_RB = 0.2 < tan(theta) it slides with acceleration
+// g (sin theta - mu_RB cos theta) = 1.51 m/s^2; with mu_RB = 0.45 >
+// tan(theta) = 0.36 it stays.
+template <int D>
+double sliding_speed(double mu_rb, double t) {
+  const double theta = 20.0 * M_PI / 180.0;
+  SceneConfig s =
+      D == 2 ? scene("collapse2d.toml", {"grid.resolution=[100,25]", "sand.0.min=[0.1,0.045]",
+                                         "sand.0.max=[0.4,0.085]", "sand.0.particles_per_cell=2",
+                                         "boundary.default=\"slip\"", "boundary.ymax=\"free\"",
+                                         "material.cohesion=5000"})
+             : scene("bed3d.toml", {"grid.size=[1.0,0.1,0.24]", "grid.resolution=[50,5,12]",
+                                    "sand.0.min=[0.1,0.0,0.05]", "sand.0.max=[0.4,0.1,0.09]",
+                                    "sand.0.particles_per_cell=2", "boundary.default=\"slip\"",
+                                    "boundary.zmax=\"free\"", "material.cohesion=5000"});
+  s.gravity = {9.81 * std::sin(theta), 0, 0};
+  s.gravity[D - 1] = -9.81 * std::cos(theta);
+  Vec3d point{0, 0, 0}, normal{0, 0, 0};
+  point[D - 1] = D == 2 ? 0.045 : 0.05;
+  normal[D - 1] = 1;
+  s.obstacles.push_back(plane(point, normal, mu_rb));
+  Simulation<D> sim(s);
+  run_until(sim, t);
+  double momentum = 0.0, mass = 0.0;
+  for (std::size_t p = 0; p < sim.particles().size(); ++p) {
+    momentum += sim.particles().volume[p] * sim.particles().velocity[p][0];
+    mass += sim.particles().volume[p];
+  }
+  EXPECT_GE(lowest_height(sim), point[D - 1]);
+  return momentum / mass;
+}
+
+template <int D>
+void block_slides() {
+  const double theta = 20.0 * M_PI / 180.0, t = 0.3;
+  const double expected = 9.81 * (std::sin(theta) - 0.2 * std::cos(theta)) * t;
+  const double v = sliding_speed<D>(0.2, t);
+  std::cout << D << "D block on a 20 degree incline, mu_RB = 0.2: mean speed at " << t
+            << " s = " << v << " m/s, Coulomb block " << expected << " m/s\n";
+  EXPECT_NEAR(v / expected, 1.0, 1e-3);
+  const double held = sliding_speed<D>(0.45, t);
+  std::cout << D << "D block, mu_RB = 0.45: mean speed " << held << " m/s\n";
+  EXPECT_LT(std::abs(held), 1e-3);
+}
+
+TEST(Obstacles, BlockSlidesWithCoulombFriction2D) { block_slides<2>(); }
+TEST(Obstacles, BlockSlidesWithCoulombFriction3D) { block_slides<3>(); }
+
+}  // namespace
+}  // namespace sablier
