@@ -12,6 +12,7 @@
 #include "physics/emission.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_obstacles.hpp"
 
 namespace sablier {
 namespace {
@@ -47,6 +48,38 @@ void print_sources(const SceneConfig& s, const std::vector<std::size_t>& counts)
   }
 }
 
+std::string point(const Vec3d& v, int d) {
+  std::string s = "(";
+  for (int a = 0; a < d; ++a) s += fmt::format("{}{:.6g}", a ? ", " : "", v[a]);
+  return s + ")";
+}
+
+// One line per [[obstacle]]: its shape, where it is, its friction.
+void print_obstacles(const SceneConfig& s) {
+  const int d = s.dimension;
+  for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
+    const ObstacleConfig& o = s.obstacles[k];
+    std::string where;
+    switch (o.shape) {
+      case ObstacleShape::Plane:
+        where = fmt::format("through {}, normal {}", point(o.point, d), point(o.normal, d));
+        break;
+      case ObstacleShape::Box:
+        where = fmt::format("from {} to {}", point(o.min, d), point(o.max, d));
+        break;
+      case ObstacleShape::Ball:
+        where = fmt::format("centre {}, radius {:.6g} m", point(o.center, d), o.radius);
+        break;
+      case ObstacleShape::Cylinder:
+        where = fmt::format("base centre {}, radius {:.6g} m, height {:.6g} m", point(o.center, d),
+                            o.radius, o.height);
+        break;
+    }
+    std::printf("  obstacle[%zu] %s %s, mu %g\n", k, obstacle_shape_name(o.shape, d), where.c_str(),
+                o.mu);
+  }
+}
+
 template <int D>
 void print_summary(const SceneConfig& s) {
   std::vector<std::size_t> counts;
@@ -68,6 +101,7 @@ void print_summary(const SceneConfig& s) {
   std::printf("particles  %zu in %zu region(s), grain mass %.6g kg\n", p.size(), s.sand.size(),
               mass);
   print_sources(s, counts);
+  print_obstacles(s);
   std::printf("time       %d frames at %g fps (%g s), %s\n", s.time.frames, s.time.fps,
               s.time.frames / s.time.fps,
               s.time.substeps > 0 ? fmt::format("{} sub-steps per frame", s.time.substeps).c_str()

@@ -46,8 +46,8 @@ void on_signal(int) { g_interrupted = 1; }
 
 // Files a run writes at the top of its folder: their presence means the
 // folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv", "series.pvd", "grid_series.pvd", "scene.toml",
-                                 "run.json",  "checkpoint.bin"};
+const char* const kRunFiles[] = {"stats.csv", "obstacles.csv", "series.pvd", "grid_series.pvd",
+                                 "scene.toml", "run.json",     "checkpoint.bin"};
 
 bool holds_run_outputs(const fs::path& dir) {
   for (const char* f : kRunFiles)
@@ -128,8 +128,10 @@ class Runner {
 
   // Continues after the checkpoint's frame and substep, with the stats rows
   // of the steps it covers.
-  int resume(const Checkpoint& c, std::vector<StepStats> rows) {
+  int resume(const Checkpoint& c, std::vector<StepStats> rows,
+             std::vector<ObstacleForceRow> forces) {
     for (StepStats& s : rows) stats_.add(s);
+    forces_ = std::move(forces);
     frame_times_ = c.frame_times;
     if (writes("vtp"))
       for (std::size_t f = 0; f < frame_times_.size(); ++f)
@@ -200,6 +202,22 @@ class Runner {
     s.solve_seconds = info.timings.solve;
     s.advection_seconds = info.timings.advection;
     stats_.add(s);
+    for (std::size_t k = 0; k < info.obstacle_force.size(); ++k) {
+      ObstacleForceRow r;
+      r.step = s.step;
+      r.time = s.time;
+      r.obstacle = static_cast<int>(k);
+      for (int a = 0; a < 3; ++a) r.force[a] = info.obstacle_force[k][a];
+      forces_.push_back(r);
+    }
+  }
+
+  // stats.csv, and obstacles.csv when the scene has obstacles.
+  void write_tables() {
+    write_file_atomic((set_.dir / "stats.csv").string(), stats_.csv());
+    if (!scene_.obstacles.empty())
+      write_file_atomic((set_.dir / "obstacles.csv").string(),
+                        obstacle_forces_csv(forces_, scene_.dimension));
   }
 
   // The frame's files, then stats.csv, then the checkpoint: a run killed
@@ -217,7 +235,7 @@ class Runner {
     if (writes("ply")) write_file_atomic(base + "ply", format_ply(frame));
     if (set_.grid) write_grid(f);
     frame_times_.push_back(frame.time);
-    write_file_atomic((set_.dir / "stats.csv").string(), stats_.csv());
+    write_tables();
     write_checkpoint(f, 0);
     record_.frames_written = f + 1;
     write_run_json("running");
@@ -263,7 +281,7 @@ class Runner {
   // An interrupt (or --stop-after-frame) after a whole step: everything
   // needed to continue is saved, then exit code 130 as for a shell's Ctrl-C.
   int stop(Progress& progress, int last_frame, int substep) {
-    write_file_atomic((set_.dir / "stats.csv").string(), stats_.csv());
+    write_tables();
     write_checkpoint(last_frame, substep);
     write_run_json("interrupted");
     progress.finish();
@@ -278,6 +296,7 @@ class Runner {
   RunSettings set_;
   Simulation<D> sim_;
   StatsTable stats_;
+  std::vector<ObstacleForceRow> forces_;
   std::vector<SeriesEntry> series_, grid_series_;
   std::vector<double> frame_times_;
   RunRecord record_;
@@ -361,7 +380,14 @@ int resume_from(const SceneConfig& scene, RunSettings set, const Checkpoint& c,
                 const std::string& source, std::vector<StepStats> rows) {
   // Everything is read and checked before the first write.
   Simulation<D> sim = restore_simulation<D>(scene, c, source);
-  return Runner<D>(scene, std::move(set), std::move(sim)).resume(c, std::move(rows));
+  std::vector<ObstacleForceRow> forces;
+  if (!scene.obstacles.empty()) {
+    const fs::path path = set.dir / "obstacles.csv";
+    if (!fs::exists(path)) throw CheckpointError(path.string() + ": missing; cannot resume");
+    forces = parse_obstacle_forces_until(read_file(path.string()), scene.dimension, c.steps);
+  }
+  return Runner<D>(scene, std::move(set), std::move(sim))
+      .resume(c, std::move(rows), std::move(forces));
 }
 
 int resume_run(const RunOptions& opt) {

@@ -36,8 +36,9 @@ radius = 0.1
 height = 0.2
 )";
 
-// Every key set, 2D: a disk, a box with its own material, a polygon, a spout
-// and an orifice.
+// Every key set, 2D: a disk, a box with its own material, a polygon, a spout,
+// an orifice and the three 2D obstacles (away from the sand but for the
+// plane, which cuts nothing of it).
 inline const std::string kFull2D = R"(dimension = 2
 seed = 42
 gravity = [1.5, -9.0]
@@ -96,6 +97,20 @@ start = 0.1
 stop = 0.5
 particles_per_cell = 3
 jitter = 0.25
+[[obstacle]]
+shape = "plane"
+point = [0.0, 0.05]
+normal = [0.1, 1.0]
+mu = 0.3
+[[obstacle]]
+shape = "box"
+min = [0.8, 0.6]
+max = [0.9, 0.7]
+[[obstacle]]
+shape = "disk"
+center = [1.7, 0.8]
+radius = 0.05
+mu = 0.0
 )";
 
 inline std::string replace(std::string s, const std::string& from, const std::string& to) {
@@ -187,6 +202,19 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
     EXPECT_EQ(p.stop, q.stop);
     EXPECT_EQ(p.particles_per_cell, q.particles_per_cell);
     EXPECT_EQ(p.jitter, q.jitter);
+  }
+  ASSERT_EQ(a.obstacles.size(), b.obstacles.size());
+  for (std::size_t k = 0; k < a.obstacles.size(); ++k) {
+    const ObstacleConfig &p = a.obstacles[k], &q = b.obstacles[k];
+    EXPECT_EQ(p.shape, q.shape);
+    EXPECT_EQ(p.point, q.point);
+    EXPECT_EQ(p.normal, q.normal);
+    EXPECT_EQ(p.min, q.min);
+    EXPECT_EQ(p.max, q.max);
+    EXPECT_EQ(p.center, q.center);
+    EXPECT_EQ(p.radius, q.radius);
+    EXPECT_EQ(p.height, q.height);
+    EXPECT_EQ(p.mu, q.mu);
   }
 }
 

@@ -3,10 +3,12 @@
 // resolved scene round-trips exactly, every class of bad input gets a one-line
 // error `<where>: <key>: <what is wrong>; <what is allowed>`, and the keys the
 // reference documents are exactly the keys the parser accepts.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -67,7 +69,81 @@ TEST(SceneFile, EveryKey2D) {
   polygon.vertices = {v(0.1, 0.8), v(0.4, 0.8), v(0.25, 0.95)};
   e.sand.push_back(polygon);
   e.spouts = {SpoutConfig{v(1.5, 0.8), 0.05, v(0, -2), 0.1, 0.5, 3, 0.25}};
+  const double len = std::sqrt(0.1 * 0.1 + 1.0 * 1.0);
+  ObstacleConfig plane, box, disk;
+  plane.point = v(0, 0.05);
+  plane.normal = v(0.1 / len, 1.0 / len);
+  plane.mu = 0.3;
+  box.shape = ObstacleShape::Box;
+  box.min = v(0.8, 0.6);
+  box.max = v(0.9, 0.7);
+  disk.shape = ObstacleShape::Ball;
+  disk.center = v(1.7, 0.8);
+  disk.radius = 0.05;
+  disk.mu = 0.0;
+  e.obstacles = {plane, box, disk};
   expect_same(parse_scene(kFull2D, "full.toml"), e);
+}
+
+// [[obstacle]] blocks: shapes by dimension, the normal normalised (and kept
+// bit for bit when already of unit length), mu's default, --set.
+const std::string kObstacles3D = kBase3D + R"([[obstacle]]
+shape = "plane"
+point = [0.0, 0.0, 0.02]
+normal = [0, 0, 3]
+[[obstacle]]
+shape = "sphere"
+center = [0.45, 0.2, 0.2]
+radius = 0.03
+mu = 5
+[[obstacle]]
+shape = "cylinder"
+center = [0.05, 0.2, 0.0]
+radius = 0.02
+height = 0.1
+[[obstacle]]
+shape = "box"
+min = [-0.1, -0.1, -0.1]
+max = [0.02, 0.3, 0.3]
+)";
+
+TEST(SceneFile, Obstacles) {
+  const SceneConfig s = parse_scene(kObstacles3D, "obstacles.toml");
+  ASSERT_EQ(s.obstacles.size(), 4u);
+  EXPECT_EQ(s.obstacles[0].shape, ObstacleShape::Plane);
+  EXPECT_EQ(s.obstacles[0].normal, v(0, 0, 1));
+  EXPECT_EQ(s.obstacles[0].point, v(0, 0, 0.02));
+  EXPECT_EQ(s.obstacles[0].mu, 0.5);  // the default
+  EXPECT_EQ(s.obstacles[1].shape, ObstacleShape::Ball);
+  EXPECT_EQ(s.obstacles[1].radius, 0.03);
+  EXPECT_EQ(s.obstacles[1].mu, kMaxObstacleMu);  // the bound is allowed
+  EXPECT_EQ(s.obstacles[2].shape, ObstacleShape::Cylinder);
+  EXPECT_EQ(s.obstacles[2].height, 0.1);
+  EXPECT_EQ(s.obstacles[3].shape, ObstacleShape::Box);  // partly outside the box: allowed
+  EXPECT_EQ(s.obstacles[3].max, v(0.02, 0.3, 0.3));
+
+  const std::string plane2d = kBase2D + "[[obstacle]]\nshape = \"plane\"\npoint = [0.5, 0.1]\n";
+  // The solid is x > 0.5, beside the sand.
+  const SceneConfig a = parse_scene(plane2d + "normal = [-3, 4e-300]\n", "a.toml");
+  EXPECT_EQ(a.obstacles.at(0).normal, v(-1, 4e-300 / 3));  // tiny components survive
+  const SceneConfig b = parse_scene(plane2d + "normal = [-3e300, 4e300]\n", "b.toml");
+  EXPECT_NEAR(b.obstacles.at(0).normal[0], -0.6, 1e-15);
+  EXPECT_NEAR(b.obstacles.at(0).normal[1], 0.8, 1e-15);
+  const Vec3d unit = b.obstacles[0].normal;  // of unit length within rounding: kept as is
+  const SceneConfig c =
+      parse_scene(plane2d + fmt::format("normal = [{}, {}]\n", unit[0], unit[1]), "c.toml");
+  EXPECT_EQ(c.obstacles[0].normal, unit);
+
+  const SceneConfig d =
+      parse_scene(kObstacles3D, "d.toml", {"obstacle.1.mu=0.2", "obstacle.2.height=0.05"});
+  EXPECT_EQ(d.obstacles[1].mu, 0.2);
+  EXPECT_EQ(d.obstacles[2].height, 0.05);
+  EXPECT_EQ(error_of(kObstacles3D, {"obstacle.0.mu=5.5"})
+                .rfind("--set obstacle[0].mu: 5.5 is out of range; allowed: 0 <= mu <= 5", 0),
+            0u);
+  EXPECT_EQ(error_of(kBase2D, {"obstacle.0.mu=0.3"})
+                .rfind("--set obstacle.0.mu=0.3: the scene has no [[obstacle]] blocks", 0),
+            0u);
 }
 
 TEST(SceneFile, EquivalentSpellings) {
@@ -170,7 +246,7 @@ TEST(SceneFile, BadOverrides) {
 // ----------------------------------------------------------------- round trip
 
 TEST(SceneFile, ResolvedSceneRoundTrips) {
-  for (const std::string& text : {kBase2D, kBase3D, kFull2D}) {
+  for (const std::string& text : {kBase2D, kBase3D, kFull2D, kObstacles3D}) {
     const SceneConfig a = parse_scene(text, "a.toml");
     const SceneConfig b = parse_scene(scene_to_toml(a), "a.toml");
     expect_same(a, b);
@@ -202,6 +278,11 @@ TEST(SceneFile, RandomDoublesRoundTripExactly) {
       x->sand[0].material.density = 1e4 * unit(rng) + 1e-9;
       x->sand.back().material.mu = 4 * unit(rng) + 1e-9;
       x->sand.back().material.mu_i = MuIConfig{unit(rng), unit(rng) + 1e-9, 1e-3 * unit(rng) + 1e-12};
+      for (ObstacleConfig& o : x->obstacles) {
+        o.mu = kMaxObstacleMu * unit(rng);
+        if (o.shape == ObstacleShape::Plane) o.point[1] = 0.1 * unit(rng);  // clear of the sand
+        if (o.shape == ObstacleShape::Ball) o.radius *= 1.0 + 0.1 * unit(rng);
+      }
       expect_same(*x, parse_scene(scene_to_toml(*x), "r.toml"));
     }
   }
@@ -238,13 +319,14 @@ TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
   const std::filesystem::path obj = std::filesystem::temp_directory_path() /
                                     ("sablier_known_keys_" + std::to_string(::getpid()) + ".obj");
   std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
-  const std::string full3d = kBase3D +
-                             "[[sand]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
+  const std::string full3d = kBase3D + "[[sand]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
                              "\"\nscale = 0.1\ntranslate = [0.38, 0.02, 0.02]\n"
                              "[[sand]]\nshape = \"box\"\nmin = [0, 0, 0]\nmax = [0.1, 0.1, 0.1]\n"
                              "[[boundary.opening]]\nface = \"zmin\"\nmin = [0.1, 0.1, 0]\n"
                              "max = [0.2, 0.2, 0]\n[material]\n"
-                             "mu_i = { delta_mu = 0.26, I0 = 0.279, grain_diameter = 1e-3 }\n";
+                             "mu_i = { delta_mu = 0.26, I0 = 0.279, grain_diameter = 1e-3 }\n"
+                             "[[obstacle]]\nshape = \"cylinder\"\ncenter = [0.45, 0.2, 0.0]\n"
+                             "radius = 0.02\nheight = 0.1\n";
   std::set<std::string> written{"boundary.default"};
   for (const std::string& text : {kFull2D, full3d}) {
     const std::string resolved = scene_to_toml(parse_scene(text, "full.toml"));

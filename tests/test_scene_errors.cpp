@@ -1,6 +1,6 @@
 // Bad scene files (issue 2, item 8): every class of bad input (missing
 // keys, wrong types, NaN, negative sizes, unknown keys, sand outside the box,
-// bad --set overrides) gets a one-line error `<where>: <key>: <what is
+// bad obstacles, bad --set overrides) gets a one-line error `<where>: <key>: <what is
 // wrong>; <what is allowed>` (docs/scenes.md, "Errors").
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
@@ -237,10 +237,77 @@ std::vector<BadScene> sand_errors() {
   };
 }
 
+// [[obstacle]] blocks after kBase2D's lines (the block at line 9) or
+// kBase3D's (line 10).
+std::vector<BadScene> obstacle_errors() {
+  const std::string block = "[[obstacle]]\nshape = ";
+  const std::string plane = block + "\"plane\"\npoint = [0.5, 0.1]\n";
+  const std::string disk = block + "\"disk\"\ncenter = [0.5, 0.25]\n";
+  const std::string box = block + "\"box\"\nmin = [0.5, 0.1]\n";
+  return {
+      {"obstacle shape unknown", with(block + "\"cone\"\n"),
+       "bad.toml:10: obstacle[0].shape: \"cone\" is not allowed", "\"plane\", \"box\", \"disk\""},
+      {"obstacle no shape", with("[[obstacle]]\nmu = 0.3\n"),
+       "bad.toml:9: obstacle[0].shape: missing", "one of \"plane\""},
+      {"obstacle sphere in 2D", with(block + "\"sphere\"\n"),
+       "bad.toml:10: obstacle[0].shape: \"sphere\" is only valid in 3D", "\"disk\""},
+      {"obstacle disk in 3D", kBase3D + block + "\"disk\"\n",
+       "bad.toml:11: obstacle[0].shape: \"disk\" is only valid in 2D",
+       "\"plane\", \"box\", \"sphere\", \"cylinder\""},
+      {"obstacle zero normal", with(plane + "normal = [0.0, 0]\n"),
+       "bad.toml:12: obstacle[0].normal: zero", "a nonzero vector, pointing from the solid"},
+      {"obstacle no normal", with(plane), "bad.toml:9: obstacle[0].normal: missing",
+       "2 finite numbers"},
+      {"obstacle normal length", with(plane + "normal = [0, 0, 1]\n"),
+       "bad.toml:12: obstacle[0].normal: expected 2 components", ""},
+      {"obstacle negative radius", with(disk + "radius = -0.1\n"),
+       "bad.toml:12: obstacle[0].radius: -0.1 is out of range", "radius > 0"},
+      {"obstacle empty box", with(box + "max = [0.6, 0.1]\n"),
+       "bad.toml:12: obstacle[0].max: empty box: max = 0.1 on y", "min < max"},
+      {"obstacle mu above the bound", with(disk + "radius = 0.1\nmu = 5.5\n"),
+       "bad.toml:13: obstacle[0].mu: 5.5 is out of range; allowed: 0 <= mu <= 5", ""},
+      {"obstacle mu negative", with(disk + "radius = 0.1\nmu = -0.1\n"),
+       "bad.toml:13: obstacle[0].mu: -0.1 is out of range", "0 <= mu <= 5"},
+      {"obstacle mu string", with(disk + "radius = 0.1\nmu = \"rough\"\n"),
+       "bad.toml:13: obstacle[0].mu: expected a number", "0 <= mu <= 5"},
+      {"obstacle min in a disk", with(disk + "radius = 0.1\nmin = [0, 0]\n"),
+       "bad.toml:13: obstacle[0].min: not used by shape \"disk\"", "allowed: center, radius"},
+      {"obstacle radius in a plane", with(plane + "normal = [0, 1]\nradius = 0.1\n"),
+       "bad.toml:13: obstacle[0].radius: not used by shape \"plane\"", "point, normal"},
+      {"obstacle height in 2D", with(disk + "radius = 0.1\nheight = 0.1\n"),
+       "bad.toml:13: obstacle[0].height: not used by shape \"disk\"", "center, radius"},
+      {"obstacle misspelt", with(disk + "radius = 0.1\nmue = 0.1\n"),
+       "bad.toml:13: obstacle[0].mue: unknown key", "did you mean \"mu\"?"},
+      {"obstacle no height",
+       kBase3D + block + "\"cylinder\"\ncenter = [0.4, 0.1, 0]\nradius = 0.02\n",
+       "bad.toml:10: obstacle[0].height: missing", "height > 0"},
+      {"obstacle outside the box",
+       with(disk + "radius = 0.1\n" + disk + "radius = 0.1\n" + block +
+            "\"disk\"\ncenter = [1.25, 0.25]\nradius = 0.125\n"),
+       "bad.toml:19: obstacle[2].center: the obstacle spans [1.125, 1.375] on x, outside the box",
+       "reaches into or touches the box"},
+      {"obstacle box under the floor",
+       with(block + "\"box\"\nmin = [0.1, -0.3]\nmax = [0.6, -0.1]\n"),
+       "bad.toml:12: obstacle[0].max: the obstacle spans [-0.3, -0.1] on y", "[0, grid.size]"},
+      {"obstacle plane misses the box",
+       with(block + "\"plane\"\npoint = [0, -1]\nnormal = [0, 1]\n"),
+       "bad.toml:11: obstacle[0].point: the plane misses the box", "cuts or touches the box"},
+      {"obstacle plane covers the box",
+       with(block + "\"plane\"\npoint = [0, 1]\nnormal = [0, 1]\n"),
+       "bad.toml:12: obstacle[0].normal: the whole box is on the plane's solid side",
+       "part of the box on the side its normal points to"},
+      {"sand inside an obstacle", with(block + "\"box\"\nmin = [-0.1, -0.1]\nmax = [0.3, 0.45]\n"),
+       "bad.toml:6: sand[0].shape: the region holds no particle: it lies inside [[obstacle]]",
+       "room for particles outside the obstacles"},
+      {"obstacle not blocks", "obstacle = 3\n" + kBase2D,
+       "bad.toml:1: obstacle: expected [[obstacle]] blocks", ""},
+  };
+}
+
 TEST(SceneFile, BadScenesGetOneLineErrorsWithKeyLineAndAllowed) {
   std::vector<BadScene> cases;
   for (auto part : {syntax_and_top_level(), grid_errors(), time_material_solver_errors(),
-                    boundary_errors(), sand_errors()})
+                    boundary_errors(), sand_errors(), obstacle_errors()})
     cases.insert(cases.end(), part.begin(), part.end());
   EXPECT_GE(cases.size(), 80u);
   std::set<std::string> names;

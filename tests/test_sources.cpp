@@ -402,6 +402,77 @@ TEST(Sources, ShapeErrorsAreOneLine) {
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
   }
 }
+// ------------------------------------------------------------------ obstacles
+
+// A box of sand with a disk obstacle in its middle: the points inside the
+// disk are not seeded, and the others are exactly those seeded without it
+// (the same jitter, in the same order).
+TEST(Sources, SeedingSkipsTheInsideOfObstacles2D) {
+  const std::string text =
+      "seed = 3\n" + kBox2D +
+      "[[sand]]\nshape = \"box\"\nmin = [0, 0]\nmax = [0.4, 0.4]\njitter = 0.5\n";
+  const Particles<2> all = seeded<2>(text);
+  const Particles<2> holed =
+      seeded<2>(text + "[[obstacle]]\nshape = \"disk\"\ncenter = [0.2, 0.2]\nradius = 0.1\n");
+  std::vector<Vec<2>> outside;
+  for (const Vec<2>& x : all.position)
+    if ((x - Vec<2>(0.2, 0.2)).norm() >= 0.1) outside.push_back(x);
+  ASSERT_EQ(holed.size(), outside.size());
+  for (std::size_t k = 0; k < outside.size(); ++k)
+    ASSERT_TRUE(holed.position[k] == outside[k]) << k;
+  const double hole = kPi * 0.1 * 0.1 / (0.005 * 0.005);
+  EXPECT_NEAR(double(all.size() - holed.size()), hole, 0.02 * hole);
+}
+
+// 3D, no jitter: a floor plane and a post; exactly the lattice points
+// outside both are seeded.
+TEST(Sources, SeedingSkipsTheInsideOfObstacles3D) {
+  const Particles<3> p = seeded<3>(kBox3D + R"([[sand]]
+shape = "box"
+min = [0, 0, 0]
+max = [0.2, 0.2, 0.2]
+[[obstacle]]
+shape = "plane"
+point = [0, 0, 0.03]
+normal = [0, 0, 2]
+[[obstacle]]
+shape = "cylinder"
+center = [0.1, 0.1, 0.05]
+radius = 0.05
+height = 0.1
+)");
+  const auto free = [](double x, double y, double z) {
+    const double r2 = (x - 0.1) * (x - 0.1) + (y - 0.1) * (y - 0.1);
+    return z >= 0.03 && (r2 >= 0.05 * 0.05 || z < 0.05 || z > 0.15);
+  };
+  std::size_t expected = 0;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k)
+        expected += free((i + 0.5) * 0.01, (j + 0.5) * 0.01, (k + 0.5) * 0.01);
+  EXPECT_EQ(p.size(), expected);
+  EXPECT_LT(expected, 8000u - 1200u);  // the floor took 3 layers, the post more
+  for (const Vec<3>& x : p.position) ASSERT_TRUE(free(x[0], x[1], x[2])) << x.transpose();
+}
+
+// A spout pouring onto a peg: the grains that would appear inside it are
+// not emitted, the others are, with the same ids.
+TEST(Sources, SpoutsEmitNothingInsideObstacles) {
+  const std::string text = kBox2D +
+                           "[[spout]]\ncenter = [0.25, 0.35]\nradius = 0.05\n"
+                           "velocity = [0.0, -0.5]\njitter = 0.5\n";
+  Particles<2> all, some;
+  emit_spout_particles<2>(parse_scene(text, "spout.toml"), 0.0, 0.4, all);
+  emit_spout_particles<2>(
+      parse_scene(text + "[[obstacle]]\nshape = \"disk\"\ncenter = [0.25, 0.25]\nradius = 0.03\n",
+                  "peg.toml"),
+      0.0, 0.4, some);
+  std::vector<std::int64_t> ids;
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if ((all.position[k] - Vec<2>(0.25, 0.25)).norm() >= 0.03) ids.push_back(all.id[k]);
+  EXPECT_LT(ids.size(), all.size());
+  EXPECT_EQ(some.id, ids);
+}
 
 // -------------------------------------------------------------------- spouts
 

@@ -95,4 +95,54 @@ std::vector<StepStats> parse_stats_csv_until(const std::string& text, long last_
   return rows;
 }
 
+namespace {
+std::string obstacle_header(int dimension) {
+  return dimension == 2 ? "step,time,obstacle,fx,fy" : "step,time,obstacle,fx,fy,fz";
+}
+}  // namespace
+
+std::string obstacle_forces_csv(const std::vector<ObstacleForceRow>& rows, int dimension) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "{}\n", obstacle_header(dimension));
+  for (const ObstacleForceRow& r : rows) {
+    fmt::format_to(std::back_inserter(out), "{},{},{}", r.step, r.time, r.obstacle);
+    for (int a = 0; a < dimension; ++a) fmt::format_to(std::back_inserter(out), ",{}", r.force[a]);
+    fmt::format_to(std::back_inserter(out), "\n");
+  }
+  return fmt::to_string(out);
+}
+
+std::vector<ObstacleForceRow> parse_obstacle_forces_until(const std::string& text, int dimension,
+                                                          long last_step) {
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line) || line != obstacle_header(dimension))
+    throw IoError("obstacles.csv: bad header");
+  std::vector<ObstacleForceRow> rows;
+  while (std::getline(in, line) && !in.eof()) {
+    std::vector<double> v;
+    std::istringstream ls(line);
+    std::string cell;
+    bool ok = true;
+    while (ok && std::getline(ls, cell, ',')) {
+      try {
+        std::size_t used = 0;
+        v.push_back(std::stod(cell, &used));
+        ok = used == cell.size();
+      } catch (const std::exception&) {
+        ok = false;
+      }
+    }
+    if (!ok || static_cast<int>(v.size()) != 3 + dimension) break;
+    ObstacleForceRow r;
+    r.step = static_cast<long>(v[0]);
+    if (r.step > last_step) break;
+    r.time = v[1];
+    r.obstacle = static_cast<int>(v[2]);
+    for (int a = 0; a < dimension; ++a) r.force[a] = v[3 + a];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 }  // namespace sablier

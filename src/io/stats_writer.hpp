@@ -39,4 +39,20 @@ std::vector<StepStats> parse_stats_csv(const std::string& text);
 // IoError on a bad header.
 std::vector<StepStats> parse_stats_csv_until(const std::string& text, long last_step);
 
+// Forces the sand exerts on the scene's [[obstacle]] blocks (obstacles.csv):
+// one row per step and obstacle, `step,time,obstacle,fx,fy[,fz]`, in N (N/m
+// in 2D), averaged over the step.
+struct ObstacleForceRow {
+  long step = 0;
+  double time = 0.0;
+  int obstacle = 0;
+  double force[3] = {0, 0, 0};
+};
+
+std::string obstacle_forces_csv(const std::vector<ObstacleForceRow>& rows, int dimension);
+// The rows of steps up to `last_step`, stopping at the first malformed or
+// unterminated row (a torn tail). Throws IoError on a bad header.
+std::vector<ObstacleForceRow> parse_obstacle_forces_until(const std::string& text, int dimension,
+                                                          long last_step);
+
 }  // namespace sablier

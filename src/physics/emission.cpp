@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include "physics/obstacle.hpp"
 
 namespace sablier {
 namespace {
@@ -79,10 +82,12 @@ void for_each_layer_point(int dimension, double radius, double spacing, F&& f) {
     }
 }
 
-// Appends layer `layer` of spout `index`, its centre `distance` downstream.
+// Appends layer `layer` of spout `index`, its centre `distance` downstream,
+// but for the points that would lie outside the box or inside an obstacle.
 template <int D>
 void emit_layer(const SceneConfig& scene, std::size_t index, std::int64_t layer, double distance,
-                const SectionFrame& frame, Particles<D>& p) {
+                const SectionFrame& frame, const std::vector<Obstacle<D>>& obstacles,
+                Particles<D>& p) {
   const SpoutConfig& sp = scene.spouts[index];
   const double s = spout_spacing(scene, sp);
   const double phi_max = scene.material.phi_max;
@@ -102,6 +107,8 @@ void emit_layer(const SceneConfig& scene, std::size_t index, std::int64_t layer,
       inside &= x[a] >= 0.0 && x[a] <= scene.size[a];
     }
     if (!inside) return;  // the box cannot hold it (the sort would drop it)
+    Vec<D> normal;
+    if (obstacle_distance(obstacles, x, &normal) < 0.0) return;  // nor can a solid
     const std::size_t n = p.size();
     p.resize(n + 1);
     p.position[n] = x;
@@ -163,6 +170,8 @@ std::int32_t spout_material_index(const SceneConfig& scene) {
 
 template <int D>
 void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p) {
+  if (scene.spouts.empty()) return;
+  const std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
   for (std::size_t i = 0; i < scene.spouts.size(); ++i) {
     const SpoutConfig& sp = scene.spouts[i];
     const double s = spout_spacing(scene, sp);
@@ -171,7 +180,7 @@ void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Partic
     const SectionFrame frame = section_frame(sp, D);
     const double front = speed(sp) * (t1 - sp.start);  // how far the first grains went
     for (std::int64_t j = from; j < to; ++j)
-      emit_layer<D>(scene, i, j, front - (j + 0.5) * s, frame, p);
+      emit_layer<D>(scene, i, j, front - (j + 0.5) * s, frame, obstacles, p);
   }
 }
 

@@ -51,7 +51,8 @@ double open_spout_speed(const SceneConfig& scene, double t);
 std::int32_t spout_material_index(const SceneConfig& scene);
 
 // Appends the particles every spout emits between t0 and t1 (t0 < t1).
-// Points that would lie outside the box are skipped.
+// Points that would lie outside the box or inside an [[obstacle]] are
+// skipped (the others keep their ids).
 template <int D>
 void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p);
 

@@ -129,7 +129,8 @@ template <int D>
 inline double obstacle_distance(const std::vector<Obstacle<D>>& obstacles, const Vec<D>& x,
                                 Vec<D>* normal, int* which = nullptr) {
   double best = 1e300;
-  Vec<D> n;
+  Vec<D> n = Vec<D>::Zero();
+  *normal = Vec<D>::Zero();
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
     const double s = signed_distance(obstacles[k], x, &n);
     if (s < best) {

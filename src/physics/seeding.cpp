@@ -1,9 +1,11 @@
-// Filling [[sand]] regions with particles (METHOD.md section 2, step 1).
+// Filling [[sand]] regions with particles (METHOD.md section 2, step 1),
+// except inside [[obstacle]] blocks.
 #include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "core/mesh.hpp"
+#include "physics/obstacle.hpp"
 #include "physics/seeding.hpp"
 #include "physics/simulation.hpp"
 
@@ -90,6 +92,7 @@ Particles<D> seed_particles(const SceneConfig& scene, std::vector<std::size_t>* 
   const double h = scene.cell_size();
   const double phi_max = scene.material.phi_max;
   std::mt19937_64 rng(scene.seed);
+  const std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
   Particles<D> p;
   for (std::size_t r = 0; r < scene.sand.size(); ++r) {
     const SandConfig& s = scene.sand[r];
@@ -121,6 +124,10 @@ Particles<D> seed_particles(const SceneConfig& scene, std::vector<std::size_t>* 
       bool taken = false;  // overlapping regions: the first region owns the space
       for (std::size_t q = 0; q < r && !taken; ++q) taken = inside<D>(scene.sand[q], x);
       if (taken) continue;
+      // Sand cannot be inside a solid. After the jitter: the random stream,
+      // hence every other particle, is the same with or without obstacles.
+      Vec<D> normal;
+      if (obstacle_distance(obstacles, x, &normal) < 0.0) continue;
       const std::size_t k = p.size();
       p.resize(k + 1);
       p.position[k] = x;

@@ -145,9 +145,11 @@ struct ObstacleConfig {
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
 };
 
-// Above this friction the obstacle's cone would let it pull on the sand
-// (METHOD.md section 3: Signorini holds for an aperture below 1/sqrt(3)).
-constexpr double kMaxObstacleMu = 0.7;
+// The same bound as material.mu. The paper's form (the full tensor in
+// DP(mu_RB)) gives the Signorini condition only below about 0.7 (METHOD.md
+// section 3); ours, a Coulomb cone on the traction (docs/method.md,
+// "Frictional obstacles"), gives it for any mu >= 0.
+constexpr double kMaxObstacleMu = 5.0;
 
 struct SceneConfig {
   std::string source;  // file name, for messages

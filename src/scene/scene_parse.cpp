@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "scene/scene.hpp"
+#include "scene/scene_obstacles.hpp"
 #include "scene/scene_reader.hpp"
 #include "scene/scene_sources.hpp"
 
@@ -119,27 +120,6 @@ void read_table(TableReader t, S& s, const std::vector<Field<S>>& fields) {
 template <class S>
 void add_keys(Names& keys, const std::string& prefix, const std::vector<Field<S>>& fields) {
   for (const Field<S>& f : fields) keys.push_back(prefix + f.key);
-}
-
-const char* other_dimension(int d) { return d == 2 ? "3D" : "2D"; }
-
-// Keys that the scene's dimension or shape does not use are errors, not
-// silently ignored.
-void reject_keys(TableReader& t, const Names& keys, const std::string& why) {
-  for (const std::string& k : keys)
-    if (t.has(k)) t.fail_at(t.node(k), k, why);
-}
-
-// A choice among `here`; a value that is valid only in the other dimension
-// (`elsewhere`) gets a message saying so.
-std::string dimension_choice(TableReader& t, const std::string& key, const Names& here,
-                             const Names& elsewhere, int d) {
-  const toml::node* n = t.node(key);
-  if (n && n->is_string() && std::count(elsewhere.begin(), elsewhere.end(), n->as_string()->get()))
-    t.fail_at(n, key,
-              fmt::format("\"{}\" is only valid in {} scenes; allowed in {}D: {}",
-                          n->as_string()->get(), other_dimension(d), d, quoted_list(here)));
-  return t.choice(key, std::nullopt, here);
 }
 
 BoundaryType boundary_type(const std::string& s) {
@@ -356,6 +336,7 @@ SceneConfig read_scene(const toml::table& doc, const std::string& file, const Or
   read_material(root.child("material"), s);
   read_table(root.child("solver"), s.solver, kSolverFields);
   read_boundary(root.child("boundary"), s);
+  read_all_obstacles(root, s);  // before [[sand]]: seeding skips their insides
   read_all_spouts(root, s);
   read_all_sand(root, s);
   check_regions_seed(root, s);
@@ -470,6 +451,7 @@ std::vector<std::string> known_scene_keys() {
   for (const std::string& k : source_scene_keys()) keys.push_back(k);
   for (const BlockField& f : kSandMaterialFields) keys.push_back(std::string("sand[].") + f.key);
   add_keys(keys, "sand[].mu_i.", kMuIFields);
+  for (const std::string& k : obstacle_scene_keys()) keys.push_back(k);
   return keys;
 }
 

@@ -282,4 +282,21 @@ void TableReader::reject_unknown(const std::vector<std::string>& known) const {
   }
 }
 
+void reject_keys(TableReader& t, const std::vector<std::string>& keys, const std::string& why) {
+  for (const std::string& k : keys)
+    if (t.has(k)) t.fail_at(t.node(k), k, why);
+}
+
+std::string dimension_choice(TableReader& t, const std::string& key,
+                             const std::vector<std::string>& here,
+                             const std::vector<std::string>& elsewhere, int dimension) {
+  const toml::node* n = t.node(key);
+  if (n && n->is_string() && std::count(elsewhere.begin(), elsewhere.end(), n->as_string()->get()))
+    t.fail_at(
+        n, key,
+        fmt::format("\"{}\" is only valid in {} scenes; allowed in {}D: {}", n->as_string()->get(),
+                    dimension == 2 ? "3D" : "2D", dimension, quoted_list(here)));
+  return t.choice(key, std::nullopt, here);
+}
+
 }  // namespace sablier

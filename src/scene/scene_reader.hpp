@@ -100,4 +100,14 @@ class TableReader {
   std::set<std::string> read_;
 };
 
+// Keys that the scene's dimension or shape does not use are errors, not
+// silently ignored: the first of `keys` present fails with `why`.
+void reject_keys(TableReader& t, const std::vector<std::string>& keys, const std::string& why);
+
+// A required choice among `here`; a value that is valid only in the other
+// dimension (`elsewhere`) gets a message saying so.
+std::string dimension_choice(TableReader& t, const std::string& key,
+                             const std::vector<std::string>& here,
+                             const std::vector<std::string>& elsewhere, int dimension);
+
 }  // namespace sablier

@@ -1,5 +1,6 @@
 // Scene parsing of spheres, polygons, triangle meshes and [[spout]] blocks
-// (docs/scenes.md), and the check that every source yields particles.
+// (docs/scenes.md), and the check that every source yields particles
+// (outside the obstacles).
 #include "scene/scene_sources.hpp"
 
 #include <fmt/format.h>
@@ -223,6 +224,14 @@ SpoutConfig read_spout(TableReader t, const SceneConfig& s) {
   return sp;
 }
 
+// Whether [[sand]] block k would seed particles but for the obstacles.
+bool seeds_without_obstacles(const SceneConfig& s, std::size_t k) {
+  if (s.obstacles.empty()) return false;
+  SceneConfig bare = s;
+  bare.obstacles.clear();
+  return seeded_per_region(bare)[k] > 0;
+}
+
 }  // namespace
 
 std::vector<std::string> shapes_of_other_dimension(int dimension) {
@@ -264,6 +273,11 @@ void check_regions_seed(TableReader& root, const SceneConfig& s) {
   for (std::size_t k = 0; k < counts.size(); ++k) {
     if (counts[k] > 0) continue;
     TableReader t = root.sub(list->get(k)->as_table(), fmt::format("sand[{}]", k));
+    if (seeds_without_obstacles(s, k))
+      t.fail_at(t.node("shape"), "shape",
+                "the region holds no particle: it lies inside [[obstacle]] blocks (the seeding "
+                "skips their insides); allowed: a region with room for particles outside the "
+                "obstacles");
     const double spacing = s.cell_size() / s.sand[k].particles_per_cell;
     t.fail_at(t.node("shape"), "shape",
               fmt::format("the region holds no particle: it is thinner than the particle spacing "

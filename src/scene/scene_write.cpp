@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "scene/scene.hpp"
+#include "scene/scene_obstacles.hpp"
 
 namespace sablier {
 namespace {
@@ -99,6 +100,26 @@ std::string spout_lines(const SpoutConfig& p, int d) {
                            num(p.jitter));
 }
 
+// Only the keys of the obstacle's shape (the others are errors).
+std::string obstacle_lines(const ObstacleConfig& o, int d) {
+  std::string out =
+      fmt::format("\n[[obstacle]]\nshape = \"{}\"\n", obstacle_shape_name(o.shape, d));
+  switch (o.shape) {
+    case ObstacleShape::Plane:
+      out += fmt::format("point = {}\nnormal = {}\n", vecf(o.point, d), vecf(o.normal, d));
+      break;
+    case ObstacleShape::Box:
+      out += fmt::format("min = {}\nmax = {}\n", vecf(o.min, d), vecf(o.max, d));
+      break;
+    case ObstacleShape::Ball:
+    case ObstacleShape::Cylinder:
+      out += fmt::format("center = {}\nradius = {}\n", vecf(o.center, d), num(o.radius));
+      if (o.shape == ObstacleShape::Cylinder) out += fmt::format("height = {}\n", num(o.height));
+      break;
+  }
+  return out + fmt::format("mu = {}\n", num(o.mu));
+}
+
 const char* boundary_name(BoundaryType t) {
   return t == BoundaryType::Stick ? "stick" : t == BoundaryType::Slip ? "slip" : "free";
 }
@@ -136,6 +157,7 @@ std::string scene_to_toml(const SceneConfig& s) {
     out += sand_material_lines(c.material);
   }
   for (const SpoutConfig& p : s.spouts) out += spout_lines(p, d);
+  for (const ObstacleConfig& o : s.obstacles) out += obstacle_lines(o, d);
   return out;
 }
 

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/tensor.hpp"
@@ -73,7 +74,7 @@ struct ConeProblem {
   // DP(mu_RB) is exactly Coulomb's, |Dev Lambda| = |t| <= mu_RB r_N (METHOD.md
   // section 4), and no stress component is left in the coupling's null space
   // for the local solve to choose.
-  int first_contact = 0;
+  int first_contact = std::numeric_limits<int>::max();  // none unless set
   std::vector<Mat<D>> contact_frame;              // per contact row j - first_contact
   std::vector<LocalDelassus<D>> contact_delassus;  // per contact row: w F^T M^{-1} F
 

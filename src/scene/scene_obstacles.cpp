@@ -1,0 +1,184 @@
+// Scene parsing of [[obstacle]] blocks (docs/scenes.md, "[[obstacle]]").
+#include "scene/scene_obstacles.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sablier {
+namespace {
+
+using Names = std::vector<std::string>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+const Range kPositive{0.0, kInf, true, false};
+const Range kMuRange{0.0, kMaxObstacleMu, false, false};
+
+const Names kShapes2D{"plane", "box", "disk"};
+const Names kShapes3D{"plane", "box", "sphere", "cylinder"};
+const Names kGeometryKeys{"point", "normal", "min", "max", "center", "radius", "height"};
+
+char axis_name(int a) { return "xyz"[a]; }
+
+// The geometric keys each shape takes.
+Names shape_keys(const std::string& shape) {
+  if (shape == "plane") return {"point", "normal"};
+  if (shape == "box") return {"min", "max"};
+  if (shape == "cylinder") return {"center", "radius", "height"};
+  return {"center", "radius"};  // disk, sphere
+}
+
+// Keys of another shape are errors, as in [[sand]] blocks.
+void reject_other_shape_keys(TableReader& t, const std::string& shape) {
+  const Names mine = shape_keys(shape);
+  for (const std::string& k : kGeometryKeys)
+    if (std::find(mine.begin(), mine.end(), k) == mine.end())
+      reject_keys(
+          t, {k},
+          fmt::format("not used by shape \"{}\"; allowed: {}", shape, fmt::join(mine, ", ")));
+}
+
+double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// The plane's normal, normalised. One already of unit length (within
+// rounding) is kept as given: normalising it again could move its last bits,
+// and the resolved scene must read back to the same normal.
+Vec3d unit_normal(TableReader& t, int d) {
+  Vec3d n = t.vector("normal", d, std::nullopt, Range());
+  if (std::abs(length(n) - 1.0) <= 1e-14) return n;
+  // Scaled by the largest component first, so that tiny or huge vectors
+  // neither underflow nor overflow.
+  const double largest = std::max({std::abs(n[0]), std::abs(n[1]), std::abs(n[2])});
+  if (largest == 0.0)
+    t.fail_at(t.node("normal"), "normal",
+              "zero; allowed: a nonzero vector, pointing from the solid into the sand");
+  for (double& x : n) x /= largest;
+  const double len = length(n);
+  for (double& x : n) x /= len;
+  return n;
+}
+
+// 0 <= mu <= kMaxObstacleMu.
+double read_mu(TableReader& t) { return t.number("mu", ObstacleConfig{}.mu, kMuRange); }
+
+// A plane must cut or touch the box and leave some of it to the sand: some
+// corner of the box on the solid side or on the plane, some strictly on the
+// sand side.
+void check_plane_reaches_box(TableReader& t, const ObstacleConfig& o, const SceneConfig& s) {
+  const int d = s.dimension;
+  double lowest = kInf, highest = -kInf;
+  for (int corner = 0; corner < (1 << d); ++corner) {
+    double dist = 0.0;
+    for (int a = 0; a < d; ++a)
+      dist += ((corner >> a & 1 ? s.size[a] : 0.0) - o.point[a]) * o.normal[a];
+    lowest = std::min(lowest, dist);
+    highest = std::max(highest, dist);
+  }
+  const double eps = 1e-12 * length(s.size);
+  if (highest <= eps)
+    t.fail_at(t.node("normal"), "normal",
+              "the whole box is on the plane's solid side (the normal points from the solid into "
+              "the sand), so no room is left for sand; allowed: a plane with part of the box on "
+              "the side its normal points to");
+  if (lowest > eps)
+    t.fail_at(t.node("point"), "point",
+              fmt::format("the plane misses the box: the box lies {} m or more on its sand side; "
+                          "allowed: a plane that cuts or touches the box [0, grid.size]",
+                          lowest));
+}
+
+// Other shapes: their bounding box must overlap or touch the box on every axis.
+void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const SceneConfig& s) {
+  for (int a = 0; a < s.dimension; ++a) {
+    double lo = o.min[a], hi = o.max[a];
+    if (o.shape != ObstacleShape::Box) {
+      const bool axial = o.shape == ObstacleShape::Cylinder && a == 2;
+      lo = axial ? o.center[a] : o.center[a] - o.radius;
+      hi = axial ? o.center[a] + o.height : o.center[a] + o.radius;
+    }
+    const double eps = 1e-12 * s.size[a];
+    if (hi >= -eps && lo <= s.size[a] + eps) continue;
+    const std::string key = o.shape != ObstacleShape::Box ? "center" : hi < 0.0 ? "max" : "min";
+    t.fail_at(t.node(key), key,
+              fmt::format("the obstacle spans [{}, {}] on {}, outside the box [0, {}] "
+                          "(grid.size); allowed: an obstacle that reaches into or touches the "
+                          "box (its bounding box overlapping [0, grid.size] on every axis)",
+                          lo, hi, axis_name(a), s.size[a]));
+  }
+}
+
+void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o, int d) {
+  if (shape == "plane") {
+    o.shape = ObstacleShape::Plane;
+    o.point = t.vector("point", d, std::nullopt, Range());
+    o.normal = unit_normal(t, d);
+  } else if (shape == "box") {
+    o.shape = ObstacleShape::Box;
+    o.min = t.vector("min", d, std::nullopt, Range());
+    o.max = t.vector("max", d, std::nullopt, Range());
+    for (int a = 0; a < d; ++a)
+      if (!(o.min[a] < o.max[a]))
+        t.fail_at(t.node("max"), "max",
+                  fmt::format("empty box: max = {} on {} is not above min = {}; allowed: min < "
+                              "max on every axis",
+                              o.max[a], axis_name(a), o.min[a]));
+  } else {
+    o.shape = shape == "cylinder" ? ObstacleShape::Cylinder : ObstacleShape::Ball;
+    o.center = t.vector("center", d, std::nullopt, Range());
+    o.radius = t.number("radius", std::nullopt, kPositive);
+    if (shape == "cylinder") o.height = t.number("height", std::nullopt, kPositive);
+  }
+}
+
+ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
+  const int d = s.dimension;
+  const std::string shape =
+      dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D,
+                       d == 2 ? Names{"sphere", "cylinder"} : Names{"disk"}, d);
+  reject_other_shape_keys(t, shape);
+  ObstacleConfig o;
+  read_geometry(t, shape, o, d);
+  o.mu = read_mu(t);
+  t.reject_unknown();
+  if (o.shape == ObstacleShape::Plane) {
+    check_plane_reaches_box(t, o, s);
+  } else {
+    check_bounds_reach_box(t, o, s);
+  }
+  return o;
+}
+
+}  // namespace
+
+void read_all_obstacles(TableReader& root, SceneConfig& s) {
+  s.obstacles.clear();
+  if (const toml::array* list = root.array_of_tables("obstacle"))
+    for (std::size_t k = 0; k < list->size(); ++k)
+      s.obstacles.push_back(
+          read_obstacle(root.sub(list->get(k)->as_table(), fmt::format("obstacle[{}]", k)), s));
+}
+
+const char* obstacle_shape_name(ObstacleShape shape, int dimension) {
+  switch (shape) {
+    case ObstacleShape::Plane:
+      return "plane";
+    case ObstacleShape::Box:
+      return "box";
+    case ObstacleShape::Ball:
+      return dimension == 2 ? "disk" : "sphere";
+    case ObstacleShape::Cylinder:
+      return "cylinder";
+  }
+  return "";
+}
+
+std::vector<std::string> obstacle_scene_keys() {
+  Names keys{"obstacle[].shape"};
+  for (const std::string& k : kGeometryKeys) keys.push_back("obstacle[]." + k);
+  keys.push_back("obstacle[].mu");
+  return keys;
+}
+
+}  // namespace sablier
