@@ -13,6 +13,7 @@
 #include "io/plot.hpp"
 #include "io/render.hpp"
 #include "io/writers.hpp"
+#include "scene/scene.hpp"
 
 namespace sablier {
 namespace {
@@ -90,6 +91,26 @@ struct Scene {
   double first_time = 0.0, last_time = 0.0;
 };
 
+// The run's [[obstacle]] blocks, from its resolved scene. None when
+// scene.toml is missing, does not load or is of another dimension: the
+// pictures then show the sand alone (with a warning if the file names
+// obstacles), never an error.
+std::vector<ObstacleConfig> read_obstacles(const fs::path& dir, int dimension) {
+  const fs::path path = dir / "scene.toml";
+  try {
+    if (!fs::exists(path)) return {};
+    const SceneConfig scene = load_scene(path.string());
+    if (scene.dimension == dimension) return scene.obstacles;
+  } catch (const std::exception& e) {
+    try {
+      if (read_file(path.string()).find("[[obstacle]]") != std::string::npos)
+        std::fprintf(stderr, "warning: render: obstacles not drawn: %s\n", e.what());
+    } catch (const std::exception&) {  // unreadable: nothing to say about obstacles
+    }
+  }
+  return {};
+}
+
 Scene survey(const std::vector<FrameFile>& frames, const fs::path& dir, RenderOptions opt) {
   Scene s;
   s.range = empty_range();
@@ -108,6 +129,7 @@ Scene survey(const std::vector<FrameFile>& frames, const fs::path& dir, RenderOp
   s.box = scene_box && scene_box->dimension == dimension ? *scene_box : bbox;
   if (s.box.lo[0] > s.box.hi[0]) throw BadInput("the frames hold no particles");
   if (opt.height == 0) opt.height = auto_height(s.box, opt.view, opt.width);
+  opt.obstacles = read_obstacles(dir, dimension);
   s.options = opt;
   return s;
 }

@@ -102,6 +102,7 @@ shape = "plane"
 point = [0.0, 0.05]
 normal = [0.1, 1.0]
 mu = 0.3
+velocity = [1.0, -0.1]
 [[obstacle]]
 shape = "box"
 min = [0.8, 0.6]
@@ -215,6 +216,7 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
     EXPECT_EQ(p.radius, q.radius);
     EXPECT_EQ(p.height, q.height);
     EXPECT_EQ(p.mu, q.mu);
+    EXPECT_EQ(p.velocity, q.velocity);
   }
 }
 

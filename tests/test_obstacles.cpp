@@ -136,5 +136,37 @@ void block_slides() {
 TEST(Obstacles, BlockSlidesWithCoulombFriction2D) { block_slides<2>(); }
 TEST(Obstacles, BlockSlidesWithCoulombFriction3D) { block_slides<3>(); }
 
+// A moving surface: the contact rows see the sand's velocity relative to
+// the obstacle. A conveyor belt (a plane floor moving along itself at
+// 0.5 m/s, mu_RB = 0.3) under a cohesive block at rest: Coulomb friction
+// accelerates the block at mu_RB g until it moves with the belt, at
+// t = 0.5 / (0.3 g) = 0.17 s.
+TEST(Obstacles, ConveyorBeltDragsABlockAtCoulombRate) {
+  SceneConfig s = scene("collapse2d.toml", {"grid.resolution=[100,25]", "sand.0.min=[0.1,0.045]",
+                                            "sand.0.max=[0.4,0.085]", "sand.0.particles_per_cell=2",
+                                            "boundary.default=\"slip\"", "boundary.ymax=\"free\"",
+                                            "material.cohesion=5000"});
+  ObstacleConfig belt = plane({0, 0.045, 0}, {0, 1, 0}, 0.3);
+  belt.velocity = {0.5, 0, 0};
+  s.obstacles.push_back(belt);
+  Simulation<2> sim(s);
+  auto mean_speed = [&] {
+    double momentum = 0.0, mass = 0.0;
+    for (std::size_t p = 0; p < sim.particles().size(); ++p) {
+      momentum += sim.particles().volume[p] * sim.particles().velocity[p][0];
+      mass += sim.particles().volume[p];
+    }
+    return momentum / mass;
+  };
+  run_until(sim, 0.1);
+  const double early = mean_speed();
+  run_until(sim, 0.4);
+  const double late = mean_speed();
+  std::cout << "block on a belt at 0.5 m/s: mean speed " << early << " m/s at 0.1 s (Coulomb "
+            << 0.3 * 9.81 * 0.1 << "), " << late << " m/s at 0.4 s\n";
+  EXPECT_NEAR(early / (0.3 * 9.81 * 0.1), 1.0, 1e-3);
+  EXPECT_NEAR(late, 0.5, 1e-3);
+}
+
 }  // namespace
 }  // namespace sablier

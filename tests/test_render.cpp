@@ -1,7 +1,8 @@
 // Pictures of runs: PNG encoding round-trips through libpng's own decoder,
 // particles land where the camera says in the colour the map gives, 3D
-// frames show the box, and `sablier render` / `sablier plot` write
-// decodable pictures or fail with one line and exit code 2.
+// frames show the box, obstacles are grey behind (2D) or among (3D) the
+// grains, and `sablier render` / `sablier plot` write decodable pictures or
+// fail with one line and exit code 2.
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -201,6 +202,123 @@ TEST(Render, ThreeDFramesShowTheBoxAndShadedGrains) {
   }
 }
 
+// Unprojecting a pixel and projecting it back gives the pixel (and the
+// depth in 3D).
+TEST(Render, CameraUnprojectInvertsProject) {
+  const Box flat = unit_box(2, 1.0, 0.5), deep = unit_box(3, 1.0, 0.3, 0.25);
+  for (View view : {View::front(), View::iso(), View{-120.0, 55.0}}) {
+    for (const Box& box : {flat, deep}) {
+      const Camera cam(box, view, 400, 300);
+      double p[3];
+      cam.unproject(123.5, 77.25, 0.4, p);
+      const Camera::Point q = cam.project(p);
+      EXPECT_NEAR(q.x, 123.5, 1e-9);
+      EXPECT_NEAR(q.y, 77.25, 1e-9);
+      EXPECT_NEAR(q.depth, box.dimension == 3 ? 0.4 : 0.0, 1e-12);
+    }
+  }
+}
+
+bool is_grey(Rgb c) { return c.r == c.g && c.g == c.b && c != kBackground && c != kInk; }
+
+Rgb pixel_at(const Canvas& c, double x, double y) {
+  return c.at(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
+}
+
+ObstacleConfig ball(double x, double y, double z, double radius) {
+  ObstacleConfig o;
+  o.shape = ObstacleShape::Ball;
+  o.center = {x, y, z};
+  o.radius = radius;
+  return o;
+}
+
+// A disk obstacle is filled grey, outlined, clipped to the box, and drawn
+// behind the grains: one grain on its rim keeps its colour.
+TEST(Render, TwoDObstaclesAreGreyBehindTheGrains) {
+  ParticleFrame f = three_particles();
+  f.count = 4;
+  f.position.insert(f.position.end(), {0.4, 0.1});  // on the first disk's rim
+  f.velocity.insert(f.velocity.end(), {1.0, 0.0});
+  f.volume.push_back(f.volume[0]);
+  f.pressure.push_back(0.0);
+  f.phi.push_back(0.6);
+  const Box box = unit_box(2, 1.0, 0.5);
+  RenderOptions opt;
+  opt.width = 400, opt.height = 240;
+  opt.obstacles = {ball(0.35, 0.1, 0.0, 0.05), ball(1.0, 0.5, 0.0, 0.1)};  // the second in a corner
+  const Canvas c = render_frame(f, box, {0.0, 2.0}, opt);
+  const Camera cam(box, opt.view, opt.width, opt.height);
+  const auto at = [&](double x, double y) {
+    const double p[2] = {x, y};
+    const Camera::Point q = cam.project(p);
+    return pixel_at(c, q.x, q.y);
+  };
+  EXPECT_EQ(at(0.35, 0.1), kObstacle);
+  EXPECT_EQ(at(0.35, 0.13), kObstacle);
+  EXPECT_EQ(at(0.4, 0.1), viridis(0.5));  // the grain on the rim
+  EXPECT_EQ(at(0.35, 0.2), kBackground);
+  EXPECT_EQ(at(0.25, 0.1), kBackground);
+  // The outline: along the row through the centre, the fill is edged.
+  const double centre[2] = {0.35, 0.1};
+  const Camera::Point q = cam.project(centre);
+  int edge = 0;
+  for (int x = static_cast<int>(q.x) - 30; x < static_cast<int>(q.x); ++x)
+    edge += c.at(x, static_cast<int>(q.y)) == kObstacleEdge;
+  EXPECT_GE(edge, 1);
+  // The corner disk: grey inside the box, nothing beyond it.
+  EXPECT_EQ(at(0.95, 0.45), kObstacle);
+  EXPECT_EQ(at(1.02, 0.45), kBackground);
+  EXPECT_EQ(at(0.95, 0.52), kBackground);
+}
+
+// A 3D grain at `position` (radius 1 cm), its speed `speed`.
+void add_grain(ParticleFrame* f, const double* position, double speed) {
+  ++f->count;
+  f->position.insert(f->position.end(), position, position + 3);
+  f->velocity.insert(f->velocity.end(), {speed, 0.0, 0.0});
+  f->volume.push_back(4.19e-6);
+  f->pressure.push_back(0.0);
+  f->phi.push_back(0.6);
+}
+
+// A sphere obstacle is a shaded grey surface in the grains' depth buffer:
+// a grain in front of it keeps its colour, one behind it is hidden, and
+// the rest of its disc is grey, in every view.
+TEST(Render, ThreeDObstaclesAreShadedAmongTheGrains) {
+  const Box box = unit_box(3, 1.0, 0.3, 0.25);
+  const double centre[3] = {0.5, 0.15, 0.12}, radius = 0.06;
+  for (View view : {View::front(), View::side(), View::top(), View::iso(), View{-120.0, 55.0}}) {
+    RenderOptions opt;
+    opt.view = view, opt.width = 500;
+    opt.height = auto_height(box, view, opt.width);
+    opt.obstacles = {ball(centre[0], centre[1], centre[2], radius)};
+    const Camera cam(box, view, opt.width, opt.height);
+    const Camera::Point c = cam.project(centre);
+    const double ppm = cam.pixels_per_metre();
+    ParticleFrame f;
+    f.dimension = 3, f.time = 0.25;
+    double in_front[3], behind[3];
+    cam.unproject(c.x, c.y, c.depth - radius - 0.015, in_front);
+    cam.unproject(c.x + 0.035 * ppm, c.y, c.depth + radius + 0.02, behind);
+    add_grain(&f, in_front, 1.0);
+    add_grain(&f, behind, 2.0);
+    const Canvas pic = render_frame(f, box, {0.0, 2.0}, opt);
+    const std::string where =
+        "view " + std::to_string(view.azimuth) + "," + std::to_string(view.elevation);
+    const Rgb front = pixel_at(pic, c.x, c.y);
+    EXPECT_FALSE(is_grey(front)) << where;
+    EXPECT_NE(front, kBackground) << where;
+    EXPECT_TRUE(is_grey(pixel_at(pic, c.x + 0.035 * ppm, c.y))) << where;  // hides the far grain
+    int grey = 0, total = 0;
+    for (int y = static_cast<int>(c.y - radius * ppm); y <= c.y + radius * ppm; ++y)
+      for (int x = static_cast<int>(c.x - radius * ppm); x <= c.x + radius * ppm; ++x)
+        if (std::hypot(x + 0.5 - c.x, y + 0.5 - c.y) < 0.9 * radius * ppm)
+          ++total, grey += is_grey(pic.at(x, y));
+    EXPECT_GT(grey, 0.8 * total) << where;
+  }
+}
+
 // Views by name or by explicit angles; malformed angles and elevations
 // beyond the poles are refused.
 TEST(Render, ViewsByNameOrAngles) {
@@ -281,6 +399,32 @@ TEST(RenderCli, FindsFramesWithoutTheSeriesFile) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(decode_file(dir / "images" / "frame_00001.png").ok);
   EXPECT_FALSE(fs::exists(dir / "images" / "frame_00000.png"));
+  fs::remove_all(dir);
+}
+
+// The obstacles come from the run's scene.toml; one that does not load
+// leaves them out (with a warning), and the pictures are still written.
+TEST(RenderCli, DrawsTheScenesObstacles) {
+  const fs::path dir = tiny_run("obstacles");
+  std::ofstream(dir / "scene.toml", std::ios::app)
+      << "\n[[obstacle]]\nshape = \"disk\"\ncenter = [0.5, 0.42]\nradius = 0.05\n";
+  const auto disk_centre = [&] {
+    const Decoded d = decode_file(dir / "images" / "frame_00002.png");
+    EXPECT_TRUE(d.ok);
+    const Camera cam(unit_box(2, 1.0, 0.5), View::front(), d.width, d.height);
+    const double centre[2] = {0.5, 0.42};
+    const Camera::Point q = cam.project(centre);
+    return d.at(static_cast<int>(q.x), static_cast<int>(q.y));
+  };
+  const Result r = sablier("render " + dir.string() + " --frames last --width 400");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(disk_centre(), kObstacle);
+  std::ofstream(dir / "scene.toml", std::ios::app) << "radius = [\n";  // no longer TOML
+  const Result bad = sablier("render " + dir.string() + " --frames last --width 400");
+  ASSERT_EQ(bad.code, 0) << bad.output;
+  EXPECT_NE(bad.output.find("warning: render: obstacles not drawn"), std::string::npos)
+      << bad.output;
+  EXPECT_NE(disk_centre(), kObstacle);
   fs::remove_all(dir);
 }
 

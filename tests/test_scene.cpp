@@ -74,6 +74,7 @@ TEST(SceneFile, EveryKey2D) {
   plane.point = v(0, 0.05);
   plane.normal = v(0.1 / len, 1.0 / len);
   plane.mu = 0.3;
+  plane.velocity = v(1.0, -0.1);  // along the plane: a conveyor belt
   box.shape = ObstacleShape::Box;
   box.min = v(0.8, 0.6);
   box.max = v(0.9, 0.7);
@@ -114,6 +115,7 @@ TEST(SceneFile, Obstacles) {
   EXPECT_EQ(s.obstacles[0].normal, v(0, 0, 1));
   EXPECT_EQ(s.obstacles[0].point, v(0, 0, 0.02));
   EXPECT_EQ(s.obstacles[0].mu, 0.5);  // the default
+  EXPECT_EQ(s.obstacles[0].velocity, v(0, 0, 0));  // the default: fixed
   EXPECT_EQ(s.obstacles[1].shape, ObstacleShape::Ball);
   EXPECT_EQ(s.obstacles[1].radius, 0.03);
   EXPECT_EQ(s.obstacles[1].mu, kMaxObstacleMu);  // the bound is allowed

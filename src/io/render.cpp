@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "io/render_obstacles.hpp"
 #include "io/writers.hpp"
 
 namespace sablier {
@@ -288,6 +289,18 @@ Camera::Point Camera::project(const double* position) const {
           d == 3 ? -dot(position, back_, d) : 0.0};
 }
 
+void Camera::unproject(double x, double y, double depth, double* position) const {
+  const double s = (x - x0_) / scale_, t = (y0_ - y) / scale_;
+  if (dimension_ == 2) depth = 0.0;
+  for (int a = 0; a < dimension_; ++a) position[a] = s * right_[a] + t * up_[a] - depth * back_[a];
+}
+
+void Camera::to_screen(const double* vector, double out[3]) const {
+  out[0] = dot(vector, right_, dimension_);
+  out[1] = dot(vector, up_, dimension_);
+  out[2] = dot(vector, back_, dimension_);
+}
+
 namespace {
 
 double value_fraction(double v, const Range& r) { return (v - r.lo) / (r.hi - r.lo); }
@@ -305,9 +318,6 @@ void draw_discs(Canvas& canvas, const ParticleFrame& f, const Camera& cam, const
 // surface, depth-tested, Lambert-shaded under a light from the upper left.
 void splat_sphere(Canvas& canvas, std::vector<float>& zbuf, const Camera::Point& c, double r_px,
                   double r_world, Rgb base) {
-  // Unit vector in (right, up, towards viewer) coordinates.
-  static const double kNorm = std::sqrt(0.4 * 0.4 + 0.7 * 0.7 + 0.6 * 0.6);
-  static const double kLight[3] = {-0.4 / kNorm, 0.7 / kNorm, 0.6 / kNorm};
   const int w = canvas.width(), h = canvas.height();
   const int x0 = std::max(0, static_cast<int>(std::floor(c.x - r_px)));
   const int x1 = std::min(w - 1, static_cast<int>(std::ceil(c.x + r_px)));
@@ -323,8 +333,8 @@ void splat_sphere(Canvas& canvas, std::vector<float>& zbuf, const Camera::Point&
       float& z = zbuf[static_cast<std::size_t>(y) * w + x];
       if (depth >= z) continue;
       z = depth;
-      const double lambert = std::max(0.0, u * kLight[0] + v * kLight[1] + n * kLight[2]);
-      canvas.set(x, y, shade(base, 0.35 + 0.65 * lambert));
+      const double normal[3] = {u, v, n};
+      canvas.set(x, y, shade(base, 0.35 + 0.65 * lambert(normal)));
     }
   }
 }
@@ -352,10 +362,10 @@ void depth_line(Canvas& canvas, const std::vector<float>& zbuf, const Camera::Po
   }
 }
 
-void draw_spheres(Canvas& canvas, const ParticleFrame& f, const Box& box, const Camera& cam,
-                  const Range& range, ColorBy color, int line_width) {
-  std::vector<float> zbuf(static_cast<std::size_t>(canvas.width()) * canvas.height(),
-                          std::numeric_limits<float>::infinity());
+// The grains as spheres and the box's edges, depth-tested against `zbuf`
+// (which may already hold the obstacles).
+void draw_spheres(Canvas& canvas, std::vector<float>& zbuf, const ParticleFrame& f, const Box& box,
+                  const Camera& cam, const Range& range, ColorBy color, int line_width) {
   for (std::size_t p = 0; p < f.count; ++p) {
     const double r = grain_radius(f.volume[p], 3);
     const double r_px = std::max(1.0, r * cam.pixels_per_metre());
@@ -427,10 +437,14 @@ Canvas render_frame(const ParticleFrame& f, const Box& box, const Range& range,
   const Camera cam(box, opt.view, opt.width, height);
   const Layout l = layout(opt.width, height);
   if (f.dimension == 2) {
+    fill_obstacles_2d(canvas, opt.obstacles, f.time, box, cam, l.scale);
     draw_discs(canvas, f, cam, range, opt.color);
     draw_outline_2d(canvas, box, cam, l.scale);
   } else {
-    draw_spheres(canvas, f, box, cam, range, opt.color, l.scale);
+    std::vector<float> zbuf(static_cast<std::size_t>(canvas.width()) * canvas.height(),
+                            std::numeric_limits<float>::infinity());
+    draw_obstacles_3d(canvas, zbuf, opt.obstacles, f.time, box, cam, l.scale);
+    draw_spheres(canvas, zbuf, f, box, cam, range, opt.color, l.scale);
   }
   draw_legend(canvas, l, cam.content(), range, opt.color, f.time);
   return canvas;

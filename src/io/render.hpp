@@ -1,13 +1,15 @@
 // Pictures of particle frames (`sablier render`): 2D frames as coloured
 // discs, 3D frames as shaded spheres seen along one of four views, with the
-// domain's outline, a colour bar and the time.
+// scene's obstacles in grey, the domain's outline, a colour bar and the time.
 #pragma once
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/image.hpp"
 #include "io/particle_frame.hpp"
+#include "scene/scene.hpp"
 
 namespace sablier {
 
@@ -67,6 +69,9 @@ struct RenderOptions {
   View view = View::front();
   int width = 800;
   int height = 0;  // 0: from the box's aspect ratio (auto_height)
+  // The scene's [[obstacle]] blocks (of the frame's dimension), drawn in
+  // grey where they were at the frame's time, clipped to the box.
+  std::vector<ObstacleConfig> obstacles;
 };
 
 // Picture height that fits the box at `width` with no empty bands.
@@ -83,6 +88,12 @@ class Camera {
   };
   // `position` has box.dimension components.
   Point project(const double* position) const;
+  // The inverse: the world point drawn at pixel coordinates (x, y) at
+  // `depth` (ignored in 2D); writes box.dimension components.
+  void unproject(double x, double y, double depth, double* position) const;
+  // A world vector (box.dimension components) in screen coordinates:
+  // along right, up and towards the viewer.
+  void to_screen(const double* vector, double out[3]) const;
   double pixels_per_metre() const { return scale_; }
   // The box's projection in pixels: its bounding rectangle.
   struct Rect {
@@ -105,5 +116,9 @@ Canvas render_frame(const ParticleFrame& frame, const Box& box, const Range& ran
 // Background and ink of the pictures (tests look for them).
 constexpr Rgb kBackground{255, 255, 255};
 constexpr Rgb kInk{40, 40, 40};
+// Obstacles: the fill of 2D solids and the unshaded colour of 3D ones
+// (shaded 3D surfaces stay grey, r = g = b), and their outlines.
+constexpr Rgb kObstacle{160, 160, 160};
+constexpr Rgb kObstacleEdge{90, 90, 90};
 
 }  // namespace sablier

@@ -171,7 +171,7 @@ std::int32_t spout_material_index(const SceneConfig& scene) {
 template <int D>
 void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p) {
   if (scene.spouts.empty()) return;
-  const std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
+  const std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene, t1);
   for (std::size_t i = 0; i < scene.spouts.size(); ++i) {
     const SpoutConfig& sp = scene.spouts[i];
     const double s = spout_spacing(scene, sp);

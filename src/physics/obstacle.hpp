@@ -21,6 +21,7 @@ struct Obstacle {
   double radius = 0.0;
   double height = 0.0;
   double mu = 0.5;  // Coulomb coefficient (scene convention, METHOD.md section 4)
+  Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation
 };
 
 template <int D>
@@ -47,13 +48,24 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   o.radius = c.radius;
   o.height = c.height;
   o.mu = c.mu;
+  for (int k = 0; k < D; ++k) o.velocity[k] = c.velocity[k];
   return o;
 }
 
+// The obstacle where its motion has taken it at time t (s).
 template <int D>
-std::vector<Obstacle<D>> make_obstacles(const SceneConfig& scene) {
+Obstacle<D> at_time(Obstacle<D> o, double t) {
+  const Vec<D> shift = t * o.velocity;
+  o.a += shift;
+  if (o.shape == ObstacleShape::Box) o.b += shift;
+  return o;
+}
+
+// The scene's obstacles at time t (s).
+template <int D>
+std::vector<Obstacle<D>> make_obstacles(const SceneConfig& scene, double t = 0.0) {
   std::vector<Obstacle<D>> out;
-  for (const ObstacleConfig& c : scene.obstacles) out.push_back(make_obstacle<D>(c));
+  for (const ObstacleConfig& c : scene.obstacles) out.push_back(at_time(make_obstacle<D>(c), t));
   return out;
 }
 

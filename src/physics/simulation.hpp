@@ -75,7 +75,12 @@ class Simulation {
   const ConeProblem<D>& problem() const { return problem_; }
 
   const std::vector<Material>& materials() const { return materials_; }
-  const std::vector<Obstacle<D>>& obstacles() const { return obstacles_; }
+  const std::vector<Obstacle<D>>& obstacles() const { return obstacles_; }  // at t = 0
+  std::vector<Obstacle<D>> obstacles_at(double t) const {
+    std::vector<Obstacle<D>> out;
+    for (const Obstacle<D>& o : obstacles_) out.push_back(at_time(o, t));
+    return out;
+  }
   // First stress row of the obstacles (rows before it are the sand's nodes).
   int first_obstacle_row() const { return obstacle_row_start_; }
 

@@ -83,9 +83,12 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   // colours, after the sand's.
   const double h = grid_.h();
   const int sand_rows = rows;
+  // Where the obstacles are at the start of the step (the scene only lets
+  // planes move along themselves, docs/scenes.md, so the solid is fixed).
+  const std::vector<Obstacle<D>> obstacles = obstacles_at(time_);
   std::vector<std::vector<std::int64_t>> obstacle_by_colour;
   std::vector<double> solid(sand_rows, 0.0);
-  if (!obstacles_.empty()) {
+  if (!obstacles.empty()) {
     obstacle_by_colour.resize(by_colour.size());
     int r = 0;
     for (std::size_t colour = 0; colour < by_colour.size(); ++colour)
@@ -93,7 +96,7 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
         const auto nc = grid_.node_coords(node);
         Vec<D> x, n;
         for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
-        const double dist = obstacle_distance(obstacles_, x, &n);
+        const double dist = obstacle_distance(obstacles, x, &n);
         solid[r++] = solid_fraction(dist, h);
         if (dist < h) obstacle_by_colour[colour].push_back(node);
       }
@@ -114,6 +117,7 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   obstacle_row_start_ = sand_rows;
   P.first_contact = sand_rows;
   P.contact_frame.clear();
+  P.contact_velocity.clear();
   obstacle_normal_.clear();
   obstacle_index_.clear();
   for (const auto& list : obstacle_by_colour)
@@ -122,12 +126,13 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
       Vec<D> x, n;
       for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
       int which = 0;
-      obstacle_distance(obstacles_, x, &n, &which);
+      obstacle_distance(obstacles, x, &n, &which);
       P.node[r] = node;
       P.coupling[r].setZero();
       obstacle_normal_.push_back(n);
       obstacle_index_.push_back(which);
       P.contact_frame.push_back(contact_frame<D>(n));
+      P.contact_velocity.push_back(obstacles[which].velocity);
       ++r;
     }
   row_solid_ = std::move(solid);
@@ -201,6 +206,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
   const ConeProblem<D>& P = problem_;
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+  const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);  // where the step leaves them
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t p = 0; p < n; ++p) {
     Vec<D>& x = particles_.position[p];
@@ -251,12 +257,12 @@ void Simulation<D>::transfer_to_particles(double dt) {
       if (x[a] < 0.0 && !leaves_through_free_face(a, 0, x)) x[a] = 1e-6 * h;
       if (x[a] > upper && !leaves_through_free_face(a, 1, x)) x[a] = upper - 1e-6 * h;
     }
-    // A grain the interpolated velocity carried into an obstacle is put
-    // back on its surface (the grid velocity keeps nodes out, not points
-    // between them).
-    if (!obstacles_.empty()) {
+    // A grain the interpolated velocity carried into an obstacle (or that a
+    // moving obstacle ran into) is put back on its surface: the grid
+    // velocity keeps nodes out, not points between them.
+    if (!obstacles_end.empty()) {
       Vec<D> normal;
-      const double dist = obstacle_distance(obstacles_, x, &normal);
+      const double dist = obstacle_distance(obstacles_end, x, &normal);
       if (dist < 0.0) x -= (dist - 1e-6 * h) * normal;
     }
   }

@@ -143,6 +143,7 @@ struct ObstacleConfig {
   double radius = 0.0;    // ball / cylinder, m
   double height = 0.0;    // cylinder, m
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
+  Vec3d velocity{0, 0, 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
 };
 
 // The same bound as material.mu. The paper's form (the full tensor in

@@ -109,6 +109,28 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
   }
 }
 
+// Only a plane moving along itself (a conveyor belt) may move: its solid
+// stays where it is and only its surface velocity drags the sand. Solids
+// moving into the sand are not supported yet (docs/method.md, "Frictional
+// obstacles": measured, a floor rising under a bed stirred it at up to
+// 0.4 m/s and compacted it to phi 1.1, with solves at their cap).
+void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
+  const double speed = length(o.velocity);
+  if (speed == 0.0) return;
+  double normal = 0.0;
+  for (int a = 0; a < d; ++a) normal += o.velocity[a] * o.normal[a];
+  if (o.shape == ObstacleShape::Plane && std::abs(normal) <= 1e-12 * speed) return;
+  t.fail_at(t.node("velocity"), "velocity",
+            o.shape == ObstacleShape::Plane
+                ? fmt::format("has a component {} m/s along the plane's normal; allowed: a plane "
+                              "moving along itself (a conveyor belt), velocity . normal = 0",
+                              normal)
+                : fmt::format("a {} cannot move; allowed: velocity on planes only, along the "
+                              "plane (a conveyor belt); solids moving into the sand are not "
+                              "supported yet",
+                              obstacle_shape_name(o.shape, d)));
+}
+
 void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o, int d) {
   if (shape == "plane") {
     o.shape = ObstacleShape::Plane;
@@ -141,6 +163,8 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   ObstacleConfig o;
   read_geometry(t, shape, o, d);
   o.mu = read_mu(t);
+  o.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
+  check_motion(t, o, d);
   t.reject_unknown();
   if (o.shape == ObstacleShape::Plane) {
     check_plane_reaches_box(t, o, s);
@@ -178,6 +202,7 @@ std::vector<std::string> obstacle_scene_keys() {
   Names keys{"obstacle[].shape"};
   for (const std::string& k : kGeometryKeys) keys.push_back("obstacle[]." + k);
   keys.push_back("obstacle[].mu");
+  keys.push_back("obstacle[].velocity");
   return keys;
 }
 

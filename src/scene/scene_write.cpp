@@ -117,7 +117,7 @@ std::string obstacle_lines(const ObstacleConfig& o, int d) {
       if (o.shape == ObstacleShape::Cylinder) out += fmt::format("height = {}\n", num(o.height));
       break;
   }
-  return out + fmt::format("mu = {}\n", num(o.mu));
+  return out + fmt::format("mu = {}\nvelocity = {}\n", num(o.mu), vecf(o.velocity, d));
 }
 
 const char* boundary_name(BoundaryType t) {

@@ -60,7 +60,8 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Vec<D> n = F.col(0);
   const Vec<D> r_old = F.transpose() * (from_sym<D>(p.lambda[j]) * n);
   const Vec<D> x_old = W.rotate(r_old);
-  const Vec<D> b = W.rotate(F.transpose() * p.velocity[p.node[j]]) - W.apply_rotated(x_old);
+  const Vec<D> relative = p.velocity[p.node[j]] - p.contact_velocity[c];
+  const Vec<D> b = W.rotate(F.transpose() * relative) - W.apply_rotated(x_old);
   Vec<D> x;
   p.state[j] = solve_drucker_prager_rotated<D>(W, b, p.aperture[j], x, p.beta[j]);
   const Vec<D> dr = W.unrotate(x - x_old);

@@ -77,6 +77,7 @@ struct ConeProblem {
   int first_contact = std::numeric_limits<int>::max();  // none unless set
   std::vector<Mat<D>> contact_frame;              // per contact row j - first_contact
   std::vector<LocalDelassus<D>> contact_delassus;  // per contact row: w F^T M^{-1} F
+  std::vector<Vec<D>> contact_velocity;  // per contact row: the obstacle's velocity (u is relative to it)
 
   int rows() const { return static_cast<int>(node.size()); }
   void resize_rows(int n);
