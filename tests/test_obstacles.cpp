@@ -168,5 +168,27 @@ TEST(Obstacles, ConveyorBeltDragsABlockAtCoulombRate) {
   EXPECT_NEAR(late, 0.5, 1e-3);
 }
 
+// Contact rows are coloured like the sand's: the same result, bit for bit,
+// whatever the thread count.
+TEST(Obstacles, DeterministicWhateverTheThreads) {
+  const SceneConfig s = scene("obstacle2d.toml");
+  std::vector<std::vector<Vec<2>>> positions;
+  std::vector<Vec3d> forces;
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    Simulation<2> sim(s);
+    StepInfo info;
+    for (int k = 0; k < 12; ++k) info = sim.step(1.0 / 60);
+    positions.push_back(sim.particles().position);
+    forces.push_back(info.obstacle_force.at(0));
+  }
+  omp_set_num_threads(1);
+  EXPECT_NE(forces[0][0], 0.0);  // the sand has reached the disk
+  EXPECT_EQ(forces[0], forces[1]);
+  ASSERT_EQ(positions[0].size(), positions[1].size());
+  for (std::size_t p = 0; p < positions[0].size(); ++p)
+    ASSERT_EQ(positions[0][p], positions[1][p]) << "particle " << p;
+}
+
 }  // namespace
 }  // namespace sablier
