@@ -18,14 +18,9 @@
 namespace sablier {
 namespace {
 
-// One thread (the determinism test sets its own): ctest may run test
-// programs side by side on few cores, where OpenMP's spinning threads slow
-// each other down many times over (measured: 10 s to 206 s for the energy
-// test under `ctest -j2`).
-struct OneThread : testing::Environment {
-  void SetUp() override { omp_set_num_threads(1); }
-};
-const testing::Environment* const kOneThread = testing::AddGlobalTestEnvironment(new OneThread);
+// One thread (test_support.hpp); the determinism tests set their own.
+const testing::Environment* const kOneThread =
+    testing::AddGlobalTestEnvironment(new test::OneThread);
 
 using test::run_until;
 using test::scene;

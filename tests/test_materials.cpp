@@ -25,13 +25,9 @@ namespace {
 
 using test::error_of;
 
-// One thread: results do not depend on the thread count, and ctest runs test
-// processes side by side on few cores, where OpenMP's spinning threads
-// slow each other down many times over.
-struct OneThread : testing::Environment {
-  void SetUp() override { omp_set_num_threads(1); }
-};
-const testing::Environment* const kOneThread = testing::AddGlobalTestEnvironment(new OneThread);
+// One thread (test_support.hpp); the determinism tests set their own.
+const testing::Environment* const kOneThread =
+    testing::AddGlobalTestEnvironment(new test::OneThread);
 
 using test::run_until;
 

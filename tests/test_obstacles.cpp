@@ -20,12 +20,9 @@
 namespace sablier {
 namespace {
 
-// One thread: results do not depend on the thread count, and ctest runs
-// test programs side by side on few cores.
-struct OneThread : testing::Environment {
-  void SetUp() override { omp_set_num_threads(1); }
-};
-const testing::Environment* const kOneThread = testing::AddGlobalTestEnvironment(new OneThread);
+// One thread (test_support.hpp); the determinism tests set their own.
+const testing::Environment* const kOneThread =
+    testing::AddGlobalTestEnvironment(new test::OneThread);
 
 using test::run_until;
 using test::scene;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,6 +19,16 @@
 #include "scene/scene.hpp"
 
 namespace sablier::test {
+
+// One OpenMP thread for a whole test program: results do not depend on the
+// thread count (tests check it where it matters), and ctest may run test
+// programs side by side on few cores, where OpenMP's spinning threads slow
+// each other down many times over (measured: 10 s to 206 s for the energy
+// test under `ctest -j2`). Register once per program:
+//   const auto* const kOneThread = testing::AddGlobalTestEnvironment(new test::OneThread);
+struct OneThread : testing::Environment {
+  void SetUp() override { omp_set_num_threads(1); }
+};
 
 // A temp path of this process: <tmp>/sablier_<name>_<pid>.
 inline std::filesystem::path temp_path(const std::string& name) {
