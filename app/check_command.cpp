@@ -98,8 +98,9 @@ void print_summary(const SceneConfig& s) {
   std::printf("scene      %s (%dD)\n", s.source.c_str(), D);
   std::printf("domain     %s m, %s cells of %.4g m (%lld cells)\n", size.c_str(), cells.c_str(),
               s.cell_size(), ncells);
-  std::printf("particles  %zu in %zu region(s), grain mass %.6g kg\n", p.size(), s.sand.size(),
-              mass);
+  // In 2D a particle's volume is an area (m^2), so its mass is per metre of depth.
+  std::printf("particles  %zu in %zu region(s), grain mass %.6g %s\n", p.size(), s.sand.size(),
+              mass, D == 2 ? "kg per metre of depth" : "kg");
   print_sources(s, counts);
   print_obstacles(s);
   std::printf("time       %d frames at %g fps (%g s), %s\n", s.time.frames, s.time.fps,
