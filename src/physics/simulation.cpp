@@ -149,7 +149,7 @@ void Simulation<D>::build_rows(double dt) {
     P.aperture[j] = obstacles_[obstacle_index_[o]].mu;  // Coulomb cone on the traction
     P.cohesion[j] = 0.0;
     P.coupling[j].setZero();
-    P.coupling[j].col(centre) = (vj / h) * obstacle_normal_[o];
+    P.coupling[j].col(centre) = (vj / h) * P.contact_frame[o].col(0);  // the normal
     P.lambda[j] = warm_lambda_[nodes + node];
   }
 }

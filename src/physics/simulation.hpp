@@ -150,11 +150,11 @@ class Simulation {
   std::vector<double> row_mu_sum_, row_cohesion_sum_;  // sum_p V_p N_j (mu_p, c_p)
 
   // Obstacles (METHOD.md section 3): rows [obstacle_row_start_, rows) are
-  // nodes within one cell of an obstacle, with that obstacle's outward
-  // normal; the sand rows' nodes carry the solid's share of their volume.
+  // nodes within one cell of an obstacle (their normals are the first
+  // columns of problem_.contact_frame); the sand rows' nodes carry the
+  // solid's share of their volume.
   std::vector<Obstacle<D>> obstacles_;
   int obstacle_row_start_ = 0;
-  std::vector<Vec<D>> obstacle_normal_;  // per obstacle row
   std::vector<int> obstacle_index_;      // per obstacle row: which [[obstacle]]
   std::vector<double> row_solid_;        // per sand row: solid fraction of V_j
 

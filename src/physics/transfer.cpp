@@ -86,7 +86,12 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   // Where the obstacles are at the start of the step (the scene only lets
   // planes move along themselves, docs/scenes.md, so the solid is fixed).
   const std::vector<Obstacle<D>> obstacles = obstacles_at(time_);
-  std::vector<std::vector<std::int64_t>> obstacle_by_colour;
+  struct Contact {
+    std::int64_t node;
+    Vec<D> normal;
+    int which;
+  };
+  std::vector<std::vector<Contact>> obstacle_by_colour;
   std::vector<double> solid(sand_rows, 0.0);
   if (!obstacles.empty()) {
     obstacle_by_colour.resize(by_colour.size());
@@ -96,9 +101,10 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
         const auto nc = grid_.node_coords(node);
         Vec<D> x, n;
         for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
-        const double dist = obstacle_distance(obstacles, x, &n);
+        int which = 0;
+        const double dist = obstacle_distance(obstacles, x, &n, &which);
         solid[r++] = solid_fraction(dist, h);
-        if (dist < h) obstacle_by_colour[colour].push_back(node);
+        if (dist < h) obstacle_by_colour[colour].push_back({node, n, which});
       }
     for (const auto& list : obstacle_by_colour) {
       rows += static_cast<int>(list.size());
@@ -118,21 +124,14 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   P.first_contact = sand_rows;
   P.contact_frame.clear();
   P.contact_velocity.clear();
-  obstacle_normal_.clear();
   obstacle_index_.clear();
   for (const auto& list : obstacle_by_colour)
-    for (std::int64_t node : list) {
-      const auto nc = grid_.node_coords(node);
-      Vec<D> x, n;
-      for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
-      int which = 0;
-      obstacle_distance(obstacles, x, &n, &which);
-      P.node[r] = node;
+    for (const Contact& c : list) {
+      P.node[r] = c.node;
       P.coupling[r].setZero();
-      obstacle_normal_.push_back(n);
-      obstacle_index_.push_back(which);
-      P.contact_frame.push_back(contact_frame<D>(n));
-      P.contact_velocity.push_back(obstacles[which].velocity);
+      obstacle_index_.push_back(c.which);
+      P.contact_frame.push_back(contact_frame<D>(c.normal));
+      P.contact_velocity.push_back(obstacles[c.which].velocity);
       ++r;
     }
   row_solid_ = std::move(solid);
