@@ -25,6 +25,11 @@ namespace sablier {
 
 enum class DPCase : unsigned char { Separation = 0, Stick = 1, Slide = 2, Inactive = 3 };
 
+// A slide solve's Newton iteration ends with a step no larger than this
+// fraction of beta, taken to first order in x without a further evaluation
+// (its error is of order the step squared).
+inline constexpr double kLastNewtonStep = 1e-7;
+
 template <int S>
 struct LocalDelassus {
   static constexpr int T = S - 1;
@@ -37,6 +42,11 @@ struct LocalDelassus {
   VecT c = VecT::Zero();   // Q^T w_TN
   VecT ev = VecT::Zero();  // eigenvalues of W_TT (+ regularisation)
   MatT Q = MatT::Identity();
+  // For the stick candidate (beta = 0) without divisions: 1 / ev, c / ev and
+  // 1 / (w_nn - c . (c / ev)), the inverse Schur complement of W_TT.
+  VecT inv_ev = VecT::Zero();
+  VecT c_inv_ev = VecT::Zero();
+  double inv_schur = 0.0;
   bool degenerate = true;  // W == 0: the node cannot act on any free velocity
 
   // Relative Tikhonov shift added to W (a compliance of 1e-13 of W's scale):
@@ -59,6 +69,9 @@ struct LocalDelassus {
     Q = eig.eigenvectors();
     ev = eig.eigenvalues().array().max(0.0) + eps;
     c = Q.transpose() * W.template bottomLeftCorner<T, 1>();
+    inv_ev = ev.cwiseInverse();
+    c_inv_ev = c.cwiseProduct(inv_ev);
+    inv_schur = 1.0 / (w_nn - c_inv_ev.dot(c));
   }
 
   VecS rotate(const VecS& x) const {
@@ -85,12 +98,13 @@ struct LocalDelassus {
 
 namespace detail {
 
-// x(beta) of (W + beta P_T) x = -b in rotated coordinates, and the slide
-// function f(beta) = |z| - aperture x_N with its derivative.
+// x(beta) of (W + beta P_T) x = -b in rotated coordinates, its derivative
+// in beta, and the slide function f(beta) = |z| - aperture x_N with its
+// derivative.
 template <int S>
 struct SlideEval {
-  double xn, f, df;
-  Eigen::Matrix<double, S - 1, 1> z;
+  double beta, xn, dxn, f, df;
+  Eigen::Matrix<double, S - 1, 1> z, dz;
 };
 
 template <int S>
@@ -101,18 +115,20 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
   const VecT r = (W.ev.array() + beta).inverse();
   const VecT cr = W.c.cwiseProduct(r);
   const double num = -bn + cr.dot(d);
-  const double den = W.w_nn - cr.dot(W.c);
+  const double inv_den = 1.0 / (W.w_nn - cr.dot(W.c));
   SlideEval<S> e;
-  e.xn = num / den;
+  e.beta = beta;
+  e.xn = num * inv_den;
   const VecT dc = d + W.c * e.xn;
   e.z = -dc.cwiseProduct(r);
-  const double dnum = -cr.cwiseProduct(r).dot(d);
-  const double dden = cr.cwiseProduct(r).dot(W.c);
-  const double dxn = (dnum - e.xn * dden) / den;
-  const VecT dz = -W.c.cwiseProduct(r) * dxn + dc.cwiseProduct(r.cwiseProduct(r));
+  const VecT crr = cr.cwiseProduct(r);
+  const double dnum = -crr.dot(d);
+  const double dden = crr.dot(W.c);
+  e.dxn = (dnum - e.xn * dden) * inv_den;
+  e.dz = -cr * e.dxn + dc.cwiseProduct(r.cwiseProduct(r));
   const double zn = e.z.norm();
   e.f = zn - aperture * e.xn;
-  e.df = (zn > 0.0 ? e.z.dot(dz) / zn : 0.0) - aperture * dxn;
+  e.df = (zn > 0.0 ? e.z.dot(e.dz) / zn : 0.0) - aperture * e.dxn;
   return e;
 }
 
@@ -144,30 +160,31 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
     x[0] = -b[0] / W.w_nn;
     return DPCase::Slide;
   }
-  // 2. Stick: beta = 0.
-  detail::SlideEval<S> e = detail::eval_slide<S>(W, b[0], d, aperture, 0.0);
-  if (e.xn > 0.0 && e.f <= 0.0) {
-    x[0] = e.xn;
-    x.template tail<T>() = e.z;
-    return DPCase::Stick;
+  // 2. Stick: x = -W^{-1} b, from the stored inverses (no division).
+  {
+    const double xn = (W.c_inv_ev.dot(d) - b[0]) * W.inv_schur;
+    const VecT z = -(d + W.c * xn).cwiseProduct(W.inv_ev);
+    if (xn > 0.0 && z.squaredNorm() <= aperture * aperture * xn * xn) {
+      x[0] = xn;
+      x.template tail<T>() = z;
+      return DPCase::Stick;
+    }
   }
-  // 3. Slide: bracket the root of f (f(0) > 0 here), then safeguarded
-  // Newton. The bracket search starts from the guess when there is one.
+  // 3. Slide: f(0) > 0 here. Bracket the root of f, starting from the guess
+  // when there is one, then safeguarded Newton from the last evaluation.
   double lo = 0.0;
   double hi = guess > 0.0 ? guess : std::max(W.ev.maxCoeff(), W.w_nn);
-  detail::SlideEval<S> eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
-  for (int k = 0; k < 200 && eh.f >= 0.0; ++k) {
+  // e: the evaluation Newton starts from, at hi if f(hi) < 0 already, else
+  // at the last bracket end with f >= 0.
+  detail::SlideEval<S> e = detail::eval_slide<S>(W, b[0], d, aperture, hi);
+  for (int k = 0; k < 200 && e.f >= 0.0; ++k) {
     lo = hi;
-    e = eh;
     hi *= 4.0;
-    eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
-  }
-  if (lo == 0.0 && guess > 0.0) {
-    // The guess is above the root: take the first Newton step from it; the
-    // bracket safeguard below catches a step that leaves [lo, hi].
+    const detail::SlideEval<S> eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
+    if (eh.f < 0.0) break;
     e = eh;
   }
-  beta = (e.df < 0.0) ? (e.f < 0.0 ? hi : lo) - e.f / e.df : 0.5 * (lo + hi);
+  beta = (e.df < 0.0) ? e.beta - e.f / e.df : 0.5 * (lo + hi);
   for (int it = 0; it < 100; ++it) {
     if (!(beta > lo && beta < hi)) beta = 0.5 * (lo + hi);
     e = detail::eval_slide<S>(W, b[0], d, aperture, beta);
@@ -179,8 +196,23 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
       hi = beta;
     }
     if (hi - lo <= 1e-15 * hi) break;
-    beta = (e.df != 0.0) ? beta - e.f / e.df : 0.5 * (lo + hi);
+    if (e.df == 0.0) {
+      beta = 0.5 * (lo + hi);
+      continue;
+    }
+    const double step = -e.f / e.df;
+    // Quadratic convergence: a Newton step this small leaves an error of
+    // order step^2, far below round-off relative to beta, so take the step
+    // and move x to first order along it instead of evaluating again.
+    if (std::abs(step) <= kLastNewtonStep * beta && beta + step > lo && beta + step < hi) {
+      e.xn += step * e.dxn;
+      e.z += step * e.dz;
+      e.beta = beta + step;
+      break;
+    }
+    beta += step;
   }
+  beta = e.beta;
   // Put x exactly on the cone (the correction is at round-off level).
   const double zn = e.z.norm();
   x[0] = e.xn;
