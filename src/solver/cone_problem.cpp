@@ -110,9 +110,12 @@ inline void update_row(ConeProblem<D>& p, int j) {
 // K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the
 // block sums in order: the same floating-point result for any thread count.
 // f(i, acc) adds its K terms to acc[0..K). Called by every thread of an
-// enclosing parallel region (work-shared loop, then one thread adds the
-// blocks; the implicit barriers publish `out` to all threads), or outside
-// any region, where it runs serially. `partial` is the caller's buffer.
+// enclosing parallel region (work-shared loop; its implicit barrier publishes
+// the block sums, which every thread then adds up itself in the same order,
+// so all threads hold the same `out` without a further barrier), or outside
+// any region, where it runs serially. `partial` is the caller's buffer; the
+// caller must not refill it before a barrier (every thread reads it here).
+// `out` is the calling thread's own.
 constexpr std::int64_t kSumBlock = 1024;
 
 inline std::int64_t sum_blocks(std::int64_t n) { return (n + kSumBlock - 1) / kSumBlock; }
@@ -128,12 +131,9 @@ void deterministic_sums(std::int64_t n, int K, std::vector<double>& partial, dou
     const std::int64_t end = std::min(n, (b + 1) * kSumBlock);
     for (std::int64_t i = b * kSumBlock; i < end; ++i) f(i, acc);
   }
-#pragma omp single
-  {
-    std::fill(out, out + K, 0.0);
-    for (std::int64_t b = 0; b < nb; ++b)
-      for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
-  }
+  std::fill(out, out + K, 0.0);
+  for (std::int64_t b = 0; b < nb; ++b)
+    for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
 }
 
 // Anderson acceleration (Walker & Ni 2011, "type II") of the Gauss-Seidel
@@ -151,10 +151,27 @@ void deterministic_sums(std::int64_t n, int K, std::vector<double>& partial, dou
 // accelerated iterate was worse than the last one) or the least-squares
 // system is singular.
 // Velocity vectors are stored compactly over the free nodes `free[q]`.
+//
+// Threads. The history (the vectors) is shared and written in work-shared
+// loops; the scalar bookkeeping (which slot, how many differences, gamma) is
+// kept by every thread in its own `State` and updated identically from the
+// same shared sums, so the threads agree without a barrier. Loops over the
+// free nodes and over the rows use static schedules over the same ranges as
+// the solver's, so a thread reads back what it wrote itself.
 template <int D>
 class AndersonMixer {
  public:
   static constexpr int kMaxDepth = 16;
+  static constexpr int kMaxSums = kMaxDepth * (kMaxDepth + 1) / 2 + kMaxDepth;
+
+  struct State {
+    int next = 0, count = 0;
+    bool have_prev = false;
+    double fnorm2_prev = 0.0;
+    int idx[kMaxDepth] = {};
+    double sums[kMaxSums] = {};
+    double gamma[kMaxDepth] = {};
+  };
 
   AndersonMixer(int depth, int rows, std::int64_t nfree) : m_(std::min(depth, kMaxDepth)) {
     if (m_ <= 0) return;
@@ -169,37 +186,37 @@ class AndersonMixer {
 
   // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
   // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2. Called by
-  // every thread of the solver's parallel region (or serially).
+  // every thread of the solver's parallel region (or serially), each with
+  // its own state `st`. Ends without a barrier: the caller's next
+  // work-shared loops over the free nodes or the rows see this thread's own
+  // writes, and anything else must wait for a barrier.
   void mix(ConeProblem<D>& p, const std::vector<std::int64_t>& free,
-           const std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2) {
+           const std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
+           State& st) const {
     if (m_ <= 0) return;
     const std::int64_t nf = static_cast<std::int64_t>(free.size());
     const int rows = p.rows();
-    // The history bookkeeping, decided once (every thread reads it after
-    // the barrier that ends the single block).
-#pragma omp single
-    {
-      const bool grew = have_prev_ && fnorm2 > kGrowth * kGrowth * fnorm2_prev_;
-      if (grew) count_ = 0;  // restart
-      record_ = have_prev_ && !grew;
-      have_prev_ = true;
-      fnorm2_prev_ = fnorm2;
-      slot_ = next_ % m_;
-      if (record_) {
-        ++next_;
-        count_ = std::min(count_ + 1, m_);
-      }
-      k_ = count_;
-      for (int a = 0; a < k_; ++a) idx_[a] = ((next_ - 1 - a) % m_ + m_) % m_;
+    // The history bookkeeping, the same on every thread.
+    const bool grew = st.have_prev && fnorm2 > kGrowth * kGrowth * st.fnorm2_prev;
+    if (grew) st.count = 0;  // restart
+    const bool record = st.have_prev && !grew;
+    st.have_prev = true;
+    st.fnorm2_prev = fnorm2;
+    const int slot = st.next % m_;
+    if (record) {
+      ++st.next;
+      st.count = std::min(st.count + 1, m_);
     }
-    const int k = k_, slot = slot_;
-    const bool record = record_;
-    const int* idx = idx_;
+    const int k = st.count;
+    for (int a = 0; a < k; ++a) st.idx[a] = ((st.next - 1 - a) % m_ + m_) % m_;
+    const int* idx = st.idx;
     // One pass over the free nodes: store the new differences and this
     // sweep's f and u(G), and accumulate the Gram matrix
-    // A_ab = <dF_a, dF_b>_M and r_a = <dF_a, f>_M.
+    // A_ab = <dF_a, dF_b>_M and r_a = <dF_a, f>_M. (Its loop's barrier also
+    // orders these writes before the combination below, which splits the
+    // free nodes differently.)
     const int K = k * (k + 1) / 2 + k;
-    deterministic_sums(nf, K, partial_, sums_, [&](std::int64_t q, double* acc) {
+    deterministic_sums(nf, K, partial_, st.sums, [&](std::int64_t q, double* acc) {
       const Vec<D>& u = p.velocity[free[q]];
       const Vec<D> f = u - u_before[q];
       if (record) {
@@ -215,38 +232,37 @@ class AndersonMixer {
         for (int b = 0; b <= a; ++b) acc[c++] += wa.dot(dF_[idx[b]][q]);
       }
     });
-#pragma omp for schedule(static)
+    // Same row split as the combination below: no barrier needed.
+#pragma omp for schedule(static) nowait
     for (int j = 0; j < rows; ++j) {
       if (record) dGl_[slot][j] = p.lambda[j] - gl_prev_[j];
       gl_prev_[j] = p.lambda[j];
     }
     if (k == 0) return;
-#pragma omp single
-    {
-      ok_ = solve_gram(k);
-      if (!ok_) count_ = 0;
+    if (!solve_gram(k, st)) {
+      st.count = 0;
+      return;
     }
-    if (!ok_) return;
-    const double* gamma = gamma_;
-#pragma omp for schedule(static)
+    const double* gamma = st.gamma;
+#pragma omp for schedule(static) nowait
     for (std::int64_t q = 0; q < nf; ++q) {
       Vec<D>& u = p.velocity[free[q]];
       for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
     }
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (int j = 0; j < rows; ++j)
       for (int a = 0; a < k; ++a) p.lambda[j] -= gamma[a] * dGl_[idx[a]][j];
   }
 
  private:
-  // gamma_ = A^{-1} r from the sums; false when the system is singular.
-  bool solve_gram(int k) {
+  // st.gamma = A^{-1} r from st.sums; false when the system is singular.
+  static bool solve_gram(int k, State& st) {
     Eigen::MatrixXd A(k, k);
     Eigen::VectorXd r(k);
     int c = 0;
     for (int a = 0; a < k; ++a) {
-      r[a] = sums_[c++];
-      for (int b = 0; b <= a; ++b) A(a, b) = A(b, a) = sums_[c++];
+      r[a] = st.sums[c++];
+      for (int b = 0; b <= a; ++b) A(a, b) = A(b, a) = st.sums[c++];
     }
     const double scale = A.diagonal().maxCoeff();
     if (!(scale > 0.0)) return false;
@@ -254,7 +270,7 @@ class AndersonMixer {
     const Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
     const Eigen::VectorXd gamma = ldlt.solve(r);
     if (ldlt.info() != Eigen::Success || !gamma.allFinite()) return false;
-    for (int a = 0; a < k; ++a) gamma_[a] = gamma[a];
+    for (int a = 0; a < k; ++a) st.gamma[a] = gamma[a];
     return true;
   }
 
@@ -265,21 +281,14 @@ class AndersonMixer {
   // collapse at 1.8e-4 (tests/test_solver.cpp).
   static constexpr double kGrowth = 1.2;
   static constexpr double kRegularisation = 1e-10;  // relative Tikhonov shift of A
-  static constexpr int kMaxSums = kMaxDepth * (kMaxDepth + 1) / 2 + kMaxDepth;
-  int m_ = 0, next_ = 0, count_ = 0;
-  bool have_prev_ = false;
-  // Decisions of the current mix, shared by the threads.
-  int k_ = 0, slot_ = 0;
-  int idx_[kMaxDepth] = {};
-  bool record_ = false, ok_ = false;
-  double sums_[kMaxSums] = {};
-  double gamma_[kMaxDepth] = {};
-  std::vector<double> partial_;
-  double fnorm2_prev_ = 0.0;
-  std::vector<std::vector<Vec<D>>> dF_, dGu_;
-  std::vector<std::vector<SymVec<D>>> dGl_;
-  std::vector<Vec<D>> f_prev_, gu_prev_;
-  std::vector<SymVec<D>> gl_prev_;
+  int m_ = 0;
+  // The shared history, written in work-shared loops (mutable: mix is const
+  // so that its scalar state can only live in the threads' State).
+  mutable std::vector<double> partial_;
+  mutable std::vector<std::vector<Vec<D>>> dF_, dGu_;
+  mutable std::vector<std::vector<SymVec<D>>> dGl_;
+  mutable std::vector<Vec<D>> f_prev_, gu_prev_;
+  mutable std::vector<SymVec<D>> gl_prev_;
 };
 
 }  // namespace
@@ -356,14 +365,19 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   AndersonMixer<D> mixer(anderson_depth, n, nf);
   // One parallel region for the whole solve: a fork and join per colour
   // would cost more than a barrier (measured: about 2 us against 0.4 us on
-  // 2 threads), and a 2D sweep of a few hundred rows takes tens of us.
-  // Every thread takes the same decisions from the shared sums.
+  // 2 threads), and a 2D sweep of a few hundred rows takes tens of us. Even
+  // barriers are kept to those the data need (the copy of u before the
+  // colours, one per colour, one per sum): every thread takes the same
+  // decisions from the same shared sums, and loops over the free nodes use
+  // one static split, so a thread reads back its own writes.
   std::vector<double> partial(sum_blocks(nf) * 2, 0.0);
-  double sums[2] = {0.0, 0.0};
   int iterations = 0;
   double residual = 0.0;
 #pragma omp parallel
   {
+    typename AndersonMixer<D>::State mix_state;
+    int my_iterations = 0;
+    double my_residual = 0.0;
     for (int it = 1; it <= max_iterations; ++it) {
 #pragma omp for schedule(static)
       for (std::int64_t q = 0; q < nf; ++q) u_prev[q] = p.velocity[free[q]];
@@ -372,6 +386,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
         for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) update_row<D>(p, j);
       }
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
+      double sums[2];
       deterministic_sums(nf, 2, partial, sums, [&](std::int64_t q, double* acc) {
         const Vec<D>& u = p.velocity[free[q]];
         const Vec<D> a = u - u_prev[q], b = u - u_free[q];
@@ -379,14 +394,15 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
         acc[1] += b.dot(weight[q].cwiseProduct(b));
       });
       const double r = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
-      const double fnorm2 = sums[0];
-#pragma omp single
-      {
-        iterations = it;
-        residual = r;
-      }
+      my_iterations = it;
+      my_residual = r;
       if (r <= tolerance) break;
-      if (it < max_iterations) mixer.mix(p, free, u_prev, weight, fnorm2);
+      if (it < max_iterations) mixer.mix(p, free, u_prev, weight, sums[0], mix_state);
+    }
+#pragma omp master
+    {
+      iterations = my_iterations;
+      residual = my_residual;
     }
   }
   report.iterations = iterations;
