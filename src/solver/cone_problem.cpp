@@ -162,7 +162,7 @@ template <int D>
 class AndersonMixer {
  public:
   static constexpr int kMaxDepth = 16;
-  static constexpr int kMaxSums = kMaxDepth * (kMaxDepth + 1) / 2 + kMaxDepth;
+  static constexpr int kMaxSums = 2 * kMaxDepth;
 
   struct State {
     int next = 0, count = 0;
@@ -170,6 +170,7 @@ class AndersonMixer {
     double fnorm2_prev = 0.0;
     int idx[kMaxDepth] = {};
     double sums[kMaxSums] = {};
+    double gram[kMaxDepth][kMaxDepth] = {};  // <dF_s, dF_t>_M by history slots s, t
     double gamma[kMaxDepth] = {};
   };
 
@@ -211,12 +212,12 @@ class AndersonMixer {
     for (int a = 0; a < k; ++a) st.idx[a] = ((st.next - 1 - a) % m_ + m_) % m_;
     const int* idx = st.idx;
     // One pass over the free nodes: store the new differences and this
-    // sweep's f and u(G), and accumulate the Gram matrix
-    // A_ab = <dF_a, dF_b>_M and r_a = <dF_a, f>_M. (Its loop's barrier also
-    // orders these writes before the combination below, which splits the
-    // free nodes differently.)
-    const int K = k * (k + 1) / 2 + k;
-    deterministic_sums(nf, K, partial_, st.sums, [&](std::int64_t q, double* acc) {
+    // sweep's f and u(G), and accumulate r_a = <dF_a, f>_M and the Gram
+    // matrix's new row A_a0 = <dF_a, dF_0>_M (dF_0 = the difference just
+    // stored; k > 0 implies one was). The older entries do not change and are
+    // kept in st.gram. (The loop's barrier also orders these writes before
+    // the combination below, which splits the free nodes differently.)
+    deterministic_sums(nf, 2 * k, partial_, st.sums, [&](std::int64_t q, double* acc) {
       const Vec<D>& u = p.velocity[free[q]];
       const Vec<D> f = u - u_before[q];
       if (record) {
@@ -225,13 +226,13 @@ class AndersonMixer {
       }
       f_prev_[q] = f;
       gu_prev_[q] = u;
-      int c = 0;
       for (int a = 0; a < k; ++a) {
         const Vec<D> wa = w[q].cwiseProduct(dF_[idx[a]][q]);
-        acc[c++] += wa.dot(f);
-        for (int b = 0; b <= a; ++b) acc[c++] += wa.dot(dF_[idx[b]][q]);
+        acc[2 * a] += wa.dot(f);
+        acc[2 * a + 1] += wa.dot(dF_[idx[0]][q]);
       }
     });
+    for (int a = 0; a < k; ++a) st.gram[idx[a]][idx[0]] = st.gram[idx[0]][idx[a]] = st.sums[2 * a + 1];
     // Same row split as the combination below: no barrier needed.
 #pragma omp for schedule(static) nowait
     for (int j = 0; j < rows; ++j) {
@@ -259,10 +260,9 @@ class AndersonMixer {
   static bool solve_gram(int k, State& st) {
     Eigen::MatrixXd A(k, k);
     Eigen::VectorXd r(k);
-    int c = 0;
     for (int a = 0; a < k; ++a) {
-      r[a] = st.sums[c++];
-      for (int b = 0; b <= a; ++b) A(a, b) = A(b, a) = st.sums[c++];
+      r[a] = st.sums[2 * a];
+      for (int b = 0; b < k; ++b) A(a, b) = st.gram[st.idx[a]][st.idx[b]];
     }
     const double scale = A.diagonal().maxCoeff();
     if (!(scale > 0.0)) return false;
