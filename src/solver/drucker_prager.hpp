@@ -20,6 +20,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sablier {
 
@@ -170,23 +171,15 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
       return DPCase::Stick;
     }
   }
-  // 3. Slide: f(0) > 0 here. Bracket the root of f, starting from the guess
-  // when there is one, then safeguarded Newton from the last evaluation.
-  double lo = 0.0;
-  double hi = guess > 0.0 ? guess : std::max(W.ev.maxCoeff(), W.w_nn);
-  // e: the evaluation Newton starts from, at hi if f(hi) < 0 already, else
-  // at the last bracket end with f >= 0.
-  detail::SlideEval<S> e = detail::eval_slide<S>(W, b[0], d, aperture, hi);
-  for (int k = 0; k < 200 && e.f >= 0.0; ++k) {
-    lo = hi;
-    hi *= 4.0;
-    const detail::SlideEval<S> eh = detail::eval_slide<S>(W, b[0], d, aperture, hi);
-    if (eh.f < 0.0) break;
-    e = eh;
-  }
-  beta = (e.df < 0.0) ? e.beta - e.f / e.df : 0.5 * (lo + hi);
-  for (int it = 0; it < 100; ++it) {
-    if (!(beta > lo && beta < hi)) beta = 0.5 * (lo + hi);
+  // 3. Slide: f(0) > 0 here and f < 0 for large beta (x_N -> -b_N / w_nn > 0,
+  // z -> 0). Safeguarded Newton from the guess (or from W's scale without
+  // one): steps leaving the bracket [lo, hi] bisect it, or, while no point
+  // with f < 0 is known (hi infinite), quadruple beta.
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double lo = 0.0, hi = kInf;
+  beta = guess > 0.0 ? guess : std::max(W.ev.maxCoeff(), W.w_nn);
+  detail::SlideEval<S> e;
+  for (int it = 0; it < 200; ++it) {
     e = detail::eval_slide<S>(W, b[0], d, aperture, beta);
     const double scale = e.z.norm() + aperture * std::abs(e.xn);
     if (std::abs(e.f) <= 1e-15 * scale) break;
@@ -195,22 +188,23 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
     } else {
       hi = beta;
     }
-    if (hi - lo <= 1e-15 * hi) break;
-    if (e.df == 0.0) {
-      beta = 0.5 * (lo + hi);
-      continue;
+    if (hi < kInf && hi - lo <= 1e-15 * hi) break;
+    double next = kInf;  // no usable Newton step
+    if (e.df < 0.0) {
+      const double step = -e.f / e.df;
+      // Quadratic convergence: a Newton step this small leaves an error of
+      // order step^2, far below round-off relative to beta, so take the
+      // step and move x to first order along it instead of evaluating again.
+      if (std::abs(step) <= kLastNewtonStep * beta && beta + step > lo && beta + step < hi) {
+        e.xn += step * e.dxn;
+        e.z += step * e.dz;
+        e.beta = beta + step;
+        break;
+      }
+      next = beta + step;
     }
-    const double step = -e.f / e.df;
-    // Quadratic convergence: a Newton step this small leaves an error of
-    // order step^2, far below round-off relative to beta, so take the step
-    // and move x to first order along it instead of evaluating again.
-    if (std::abs(step) <= kLastNewtonStep * beta && beta + step > lo && beta + step < hi) {
-      e.xn += step * e.dxn;
-      e.z += step * e.dz;
-      e.beta = beta + step;
-      break;
-    }
-    beta += step;
+    if (!(next > lo && next < hi)) next = (hi == kInf) ? 4.0 * beta : 0.5 * (lo + hi);
+    beta = next;
   }
   beta = e.beta;
   // Put x exactly on the cone (the correction is at round-off level).
