@@ -341,7 +341,7 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
 
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
-                               int anderson_depth) {
+                               int anderson_depth, std::vector<double>* history) {
   SolveReport report;
   const int n = p.rows();
   if (n == 0) return report;
@@ -373,11 +373,19 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::vector<double> partial(sum_blocks(nf) * 2, 0.0);
   int iterations = 0;
   double residual = 0.0;
+  if (history) history->clear();
+  // The best iterate of the second half (allocated when first needed).
+  const int keep_from = std::max(1, max_iterations / 2);
+  std::vector<SymVec<D>> best_lambda;
+  std::vector<DPCase> best_state;
+  std::vector<Vec<D>> best_u;
 #pragma omp parallel
   {
     typename AndersonMixer<D>::State mix_state;
     int my_iterations = 0;
     double my_residual = 0.0;
+    double best = std::numeric_limits<double>::infinity();
+    bool allocated = false;
     for (int it = 1; it <= max_iterations; ++it) {
 #pragma omp for schedule(static)
       for (std::int64_t q = 0; q < nf; ++q) u_prev[q] = p.velocity[free[q]];
@@ -396,8 +404,45 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       const double r = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
       my_iterations = it;
       my_residual = r;
+      if (history) {
+#pragma omp master
+        history->push_back(r);
+      }
       if (r <= tolerance) break;
+      if (it >= keep_from && r < best) {
+        // Same static splits as the mixer's loops over rows and free nodes,
+        // which are the next to write these: no barrier needed.
+        best = r;
+        if (!allocated) {  // the same decision on every thread
+#pragma omp single
+          {
+            best_lambda.resize(n);
+            best_state.resize(n);
+            best_u.resize(nf);
+          }
+          allocated = true;
+        }
+#pragma omp for schedule(static) nowait
+        for (int j = 0; j < n; ++j) {
+          best_lambda[j] = p.lambda[j];
+          best_state[j] = p.state[j];
+        }
+#pragma omp for schedule(static) nowait
+        for (std::int64_t q = 0; q < nf; ++q) best_u[q] = p.velocity[free[q]];
+      }
       if (it < max_iterations) mixer.mix(p, free, u_prev, weight, sums[0], mix_state);
+    }
+    if (my_residual > tolerance && best < my_residual) {
+      // Stopped at the cap on a worse iterate: go back to the best one.
+#pragma omp barrier
+#pragma omp for schedule(static) nowait
+      for (int j = 0; j < n; ++j) {
+        p.lambda[j] = best_lambda[j];
+        p.state[j] = best_state[j];
+      }
+#pragma omp for schedule(static) nowait
+      for (std::int64_t q = 0; q < nf; ++q) p.velocity[free[q]] = best_u[q];
+      my_residual = best;
     }
 #pragma omp master
     {
@@ -429,7 +474,8 @@ SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j) {
   template struct ConeProblem<D>;                                                       \
   template void assemble_delassus<D>(ConeProblem<D>&);                                  \
   template void apply_stress_to_velocity<D>(ConeProblem<D>&);                           \
-  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int);           \
+  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int,              \
+                                             std::vector<double>*);                         \
   template SymVec<D> row_strain_rate<D>(const ConeProblem<D>&, int);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)

@@ -106,9 +106,16 @@ void apply_stress_to_velocity(ConeProblem<D>& p);
 // With anderson_depth m > 0 the sweeps are accelerated by Anderson mixing of
 // the last m sweeps (cone_problem.cpp, AndersonMixer); m = 0 is plain
 // Gauss-Seidel.
+// A solve that reaches the cap returns the best iterate of its second half:
+// the stresses and velocities after the sweep, among sweeps
+// max_iterations / 2 ... max_iterations, with the smallest residual (each
+// such iterate follows a plain sweep, so it is feasible, and its residual is
+// the one reported). Solves that stall wander (docs/benchmarks.md, "Steps at
+// the cap"); the last iterate may sit on a spike.
+// `history`, when given, receives every sweep's residual.
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
-                               int anderson_depth = 0);
+                               int anderson_depth = 0, std::vector<double>* history = nullptr);
 
 // gamma_j (1/s) from the current velocities, for diagnostics and tests.
 template <int D>
