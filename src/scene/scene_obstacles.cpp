@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace sablier {
 namespace {
@@ -179,9 +180,8 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
 void read_all_obstacles(TableReader& root, SceneConfig& s) {
   s.obstacles.clear();
   if (const toml::array* list = root.array_of_tables("obstacle"))
-    for (std::size_t k = 0; k < list->size(); ++k)
-      s.obstacles.push_back(
-          read_obstacle(root.sub(list->get(k)->as_table(), fmt::format("obstacle[{}]", k)), s));
+    root.for_each_table(*list, "obstacle",
+                        [&](TableReader t) { s.obstacles.push_back(read_obstacle(std::move(t), s)); });
 }
 
 const char* obstacle_shape_name(ObstacleShape shape, int dimension) {

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "scene/scene.hpp"
 #include "scene/scene_obstacles.hpp"
@@ -244,9 +245,9 @@ void read_boundary(TableReader b, SceneConfig& s) {
     s.boundary.faces[f] = boundary_type(b.choice(faces[f], fallback, kBoundaryTypes));
   s.boundary.openings.clear();
   if (const toml::array* list = b.array_of_tables("opening"))
-    for (std::size_t k = 0; k < list->size(); ++k)
-      s.boundary.openings.push_back(
-          read_opening(b.sub(list->get(k)->as_table(), fmt::format("boundary.opening[{}]", k)), s));
+    b.for_each_table(*list, "boundary.opening", [&](TableReader t) {
+      s.boundary.openings.push_back(read_opening(std::move(t), s));
+    });
   b.reject_unknown();
 }
 
@@ -319,8 +320,7 @@ void read_all_sand(TableReader& root, SceneConfig& s) {
   if ((!list || list->empty()) && !s.spouts.empty()) return;  // all sand poured in
   if (!list) root.fail("sand", "missing; required: " + required);
   if (list->empty()) root.fail_at(root.node("sand"), "sand", "empty; required: " + required);
-  for (std::size_t k = 0; k < list->size(); ++k)
-    s.sand.push_back(read_sand(root.sub(list->get(k)->as_table(), fmt::format("sand[{}]", k)), s));
+  root.for_each_table(*list, "sand", [&](TableReader t) { s.sand.push_back(read_sand(std::move(t), s)); });
 }
 
 SceneConfig read_scene(const toml::table& doc, const std::string& file, const Origins& origins) {

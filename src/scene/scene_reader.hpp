@@ -71,6 +71,13 @@ class TableReader {
   Vec3i integers(const std::string& key, int n, std::optional<Vec3i> fallback, const Range& range);
   // An array of tables ([[key]] blocks); null if absent, possibly empty.
   const toml::array* array_of_tables(const std::string& key);
+  // f(reader) for each table of such an array, in order, the reader of
+  // table k named `prefix[k]` in messages.
+  template <class F>
+  void for_each_table(const toml::array& list, const std::string& prefix, F&& f) const {
+    for (std::size_t k = 0; k < list.size(); ++k)
+      f(sub(list.get(k)->as_table(), prefix + "[" + std::to_string(k) + "]"));
+  }
 
   // Throws for keys present in the table but neither read nor in `known`.
   void reject_unknown(const std::vector<std::string>& known = {}) const;

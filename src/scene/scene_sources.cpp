@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <utility>
 
 #include "core/mesh.hpp"
 #include "physics/emission.hpp"
@@ -261,9 +262,8 @@ void read_source_shape(TableReader& t, const std::string& shape, SandConfig& c,
 void read_all_spouts(TableReader& root, SceneConfig& s) {
   s.spouts.clear();
   if (const toml::array* list = root.array_of_tables("spout"))
-    for (std::size_t k = 0; k < list->size(); ++k)
-      s.spouts.push_back(
-          read_spout(root.sub(list->get(k)->as_table(), fmt::format("spout[{}]", k)), s));
+    root.for_each_table(*list, "spout",
+                        [&](TableReader t) { s.spouts.push_back(read_spout(std::move(t), s)); });
 }
 
 void check_regions_seed(TableReader& root, const SceneConfig& s) {
