@@ -4,6 +4,9 @@
 #include <cmath>
 
 #include <Eigen/Dense>
+#include <omp.h>
+
+#include "solver/team.hpp"
 
 namespace sablier {
 
@@ -109,28 +112,28 @@ inline void update_row(ConeProblem<D>& p, int j) {
 
 // K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the
 // block sums in order: the same floating-point result for any thread count.
-// f(i, acc) adds its K terms to acc[0..K). Called by every thread of an
-// enclosing parallel region (work-shared loop; its implicit barrier publishes
-// the block sums, which every thread then adds up itself in the same order,
-// so all threads hold the same `out` without a further barrier), or outside
-// any region, where it runs serially. `partial` is the caller's buffer; the
-// caller must not refill it before a barrier (every thread reads it here).
-// `out` is the calling thread's own.
+// f(i, acc) adds its K terms to acc[0..K). Called by every thread of the
+// team (each fills its share of the blocks; the barrier publishes the block
+// sums, which every thread then adds up itself in the same order, so all
+// threads hold the same `out` without a further barrier). `partial` is the
+// caller's buffer; the caller must not refill it before a barrier (every
+// thread reads it here). `out` is the calling thread's own.
 constexpr std::int64_t kSumBlock = 1024;
 
 inline std::int64_t sum_blocks(std::int64_t n) { return (n + kSumBlock - 1) / kSumBlock; }
 
 template <class F>
-void deterministic_sums(std::int64_t n, int K, std::vector<double>& partial, double* out,
-                        const F& f) {
+void deterministic_sums(const Team& team, std::int64_t n, int K, std::vector<double>& partial,
+                        double* out, const F& f) {
   const std::int64_t nb = sum_blocks(n);
-#pragma omp for schedule(static)
-  for (std::int64_t b = 0; b < nb; ++b) {
+  const auto [b0, b1] = team.split(nb);
+  for (std::int64_t b = b0; b < b1; ++b) {
     double* acc = partial.data() + b * K;
     std::fill(acc, acc + K, 0.0);
     const std::int64_t end = std::min(n, (b + 1) * kSumBlock);
     for (std::int64_t i = b * kSumBlock; i < end; ++i) f(i, acc);
   }
+  team.sync();
   std::fill(out, out + K, 0.0);
   for (std::int64_t b = 0; b < nb; ++b)
     for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
@@ -152,12 +155,12 @@ void deterministic_sums(std::int64_t n, int K, std::vector<double>& partial, dou
 // system is singular.
 // Velocity vectors are stored compactly over the free nodes `free[q]`.
 //
-// Threads. The history (the vectors) is shared and written in work-shared
-// loops; the scalar bookkeeping (which slot, how many differences, gamma) is
-// kept by every thread in its own `State` and updated identically from the
-// same shared sums, so the threads agree without a barrier. Loops over the
-// free nodes and over the rows use static schedules over the same ranges as
-// the solver's, so a thread reads back what it wrote itself.
+// Threads. The history (the vectors) is shared, each thread writing its
+// share (Team::split); the scalar bookkeeping (which slot, how many
+// differences, gamma) is kept by every thread in its own `State` and updated
+// identically from the same shared sums, so the threads agree without a
+// barrier. Loops over the free nodes and over the rows split the same
+// ranges as the solver's, so a thread reads back what it wrote itself.
 template <int D>
 class AndersonMixer {
  public:
@@ -189,9 +192,9 @@ class AndersonMixer {
   // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2. Called by
   // every thread of the solver's parallel region (or serially), each with
   // its own state `st`. Ends without a barrier: the caller's next
-  // work-shared loops over the free nodes or the rows see this thread's own
+  // loops over its share of the free nodes or the rows see this thread's own
   // writes, and anything else must wait for a barrier.
-  void mix(ConeProblem<D>& p, const std::vector<std::int64_t>& free,
+  void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
            const std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
            State& st) const {
     if (m_ <= 0) return;
@@ -217,7 +220,7 @@ class AndersonMixer {
     // stored; k > 0 implies one was). The older entries do not change and are
     // kept in st.gram. (The loop's barrier also orders these writes before
     // the combination below, which splits the free nodes differently.)
-    deterministic_sums(nf, 2 * k, partial_, st.sums, [&](std::int64_t q, double* acc) {
+    deterministic_sums(team, nf, 2 * k, partial_, st.sums, [&](std::int64_t q, double* acc) {
       const Vec<D>& u = p.velocity[free[q]];
       const Vec<D> f = u - u_before[q];
       if (record) {
@@ -234,8 +237,9 @@ class AndersonMixer {
     });
     for (int a = 0; a < k; ++a) st.gram[idx[a]][idx[0]] = st.gram[idx[0]][idx[a]] = st.sums[2 * a + 1];
     // Same row split as the combination below: no barrier needed.
-#pragma omp for schedule(static) nowait
-    for (int j = 0; j < rows; ++j) {
+    const auto [j0, j1] = team.split(rows);
+    const auto [q0, q1] = team.split(nf);
+    for (int j = j0; j < j1; ++j) {
       if (record) dGl_[slot][j] = p.lambda[j] - gl_prev_[j];
       gl_prev_[j] = p.lambda[j];
     }
@@ -245,13 +249,11 @@ class AndersonMixer {
       return;
     }
     const double* gamma = st.gamma;
-#pragma omp for schedule(static) nowait
-    for (std::int64_t q = 0; q < nf; ++q) {
+    for (std::int64_t q = q0; q < q1; ++q) {
       Vec<D>& u = p.velocity[free[q]];
       for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
     }
-#pragma omp for schedule(static) nowait
-    for (int j = 0; j < rows; ++j)
+    for (int j = j0; j < j1; ++j)
       for (int a = 0; a < k; ++a) p.lambda[j] -= gamma[a] * dGl_[idx[a]][j];
   }
 
@@ -365,11 +367,13 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   AndersonMixer<D> mixer(anderson_depth, n, nf);
   // One parallel region for the whole solve: a fork and join per colour
   // would cost more than a barrier (measured: about 2 us against 0.4 us on
-  // 2 threads), and a 2D sweep of a few hundred rows takes tens of us. Even
-  // barriers are kept to those the data need (the copy of u before the
-  // colours, one per colour, one per sum): every thread takes the same
+  // 2 threads), and a 2D sweep of a few hundred rows takes tens of us. The
+  // loops split their ranges themselves and synchronise with the team's spin
+  // barrier (solver/team.hpp), not libgomp's, which makes a system call per
+  // barrier. Barriers are kept to those the data need (the copy of u before
+  // the colours, one per colour, one per sum): every thread takes the same
   // decisions from the same shared sums, and loops over the free nodes use
-  // one static split, so a thread reads back its own writes.
+  // one split, so a thread reads back its own writes.
   std::vector<double> partial(sum_blocks(nf) * 2, 0.0);
   int iterations = 0;
   double residual = 0.0;
@@ -379,23 +383,30 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::vector<SymVec<D>> best_lambda;
   std::vector<DPCase> best_state;
   std::vector<Vec<D>> best_u;
+  SpinBarrier barrier;
 #pragma omp parallel
   {
+#pragma omp single
+    barrier.set_size(omp_get_num_threads());
+    const Team team{omp_get_thread_num(), omp_get_num_threads(), &barrier};
+    const auto [q0, q1] = team.split(nf);
+    const auto [j0, j1] = team.split(n);
     typename AndersonMixer<D>::State mix_state;
     int my_iterations = 0;
     double my_residual = 0.0;
     double best = std::numeric_limits<double>::infinity();
     bool allocated = false;
     for (int it = 1; it <= max_iterations; ++it) {
-#pragma omp for schedule(static)
-      for (std::int64_t q = 0; q < nf; ++q) u_prev[q] = p.velocity[free[q]];
+      for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = p.velocity[free[q]];
+      team.sync();
       for (int c = 0; c < ncol; ++c) {
-#pragma omp for schedule(static)
-        for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) update_row<D>(p, j);
+        const auto [c0, c1] = team.split(p.colour_start[c], p.colour_start[c + 1]);
+        for (int j = c0; j < c1; ++j) update_row<D>(p, j);
+        team.sync();
       }
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
       double sums[2];
-      deterministic_sums(nf, 2, partial, sums, [&](std::int64_t q, double* acc) {
+      deterministic_sums(team, nf, 2, partial, sums, [&](std::int64_t q, double* acc) {
         const Vec<D>& u = p.velocity[free[q]];
         const Vec<D> a = u - u_prev[q], b = u - u_free[q];
         acc[0] += a.dot(weight[q].cwiseProduct(a));
@@ -414,34 +425,30 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
         // which are the next to write these: no barrier needed.
         best = r;
         if (!allocated) {  // the same decision on every thread
-#pragma omp single
-          {
+          if (team.rank == 0) {
             best_lambda.resize(n);
             best_state.resize(n);
             best_u.resize(nf);
           }
+          team.sync();
           allocated = true;
         }
-#pragma omp for schedule(static) nowait
-        for (int j = 0; j < n; ++j) {
+        for (int j = j0; j < j1; ++j) {
           best_lambda[j] = p.lambda[j];
           best_state[j] = p.state[j];
         }
-#pragma omp for schedule(static) nowait
-        for (std::int64_t q = 0; q < nf; ++q) best_u[q] = p.velocity[free[q]];
+        for (std::int64_t q = q0; q < q1; ++q) best_u[q] = p.velocity[free[q]];
       }
-      if (it < max_iterations) mixer.mix(p, free, u_prev, weight, sums[0], mix_state);
+      if (it < max_iterations) mixer.mix(team, p, free, u_prev, weight, sums[0], mix_state);
     }
     if (my_residual > tolerance && best < my_residual) {
       // Stopped at the cap on a worse iterate: go back to the best one.
-#pragma omp barrier
-#pragma omp for schedule(static) nowait
-      for (int j = 0; j < n; ++j) {
+      team.sync();
+      for (int j = j0; j < j1; ++j) {
         p.lambda[j] = best_lambda[j];
         p.state[j] = best_state[j];
       }
-#pragma omp for schedule(static) nowait
-      for (std::int64_t q = 0; q < nf; ++q) p.velocity[free[q]] = best_u[q];
+      for (std::int64_t q = q0; q < q1; ++q) p.velocity[free[q]] = best_u[q];
       my_residual = best;
     }
 #pragma omp master
