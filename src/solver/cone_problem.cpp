@@ -49,6 +49,37 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   }
 }
 
+// Velocity of a body's point at `arm` from its centre: V + omega x arm.
+template <int D>
+inline Vec<D> body_point_velocity(const ConeProblem<D>& p, std::int64_t v, const Vec<D>& arm) {
+  const Vec<D>& V = p.velocity[v];
+  const Vec<D>& w = p.velocity[v + 1];
+  if constexpr (D == 2) {
+    return V + w[0] * Vec<D>(-arm[1], arm[0]);
+  } else {
+    return V + w.cross(arm);
+  }
+}
+
+// The body's reaction to force f (the force its contact stress puts on the
+// sand node at `arm`): V -= M^{-1} f, omega -= J^{-1} (arm x f), with the
+// inverse masses already multiplied by dt (cone_problem.hpp).
+template <int D>
+inline void push_body(ConeProblem<D>& p, std::int64_t v, const Vec<D>& arm, const Vec<D>& f) {
+  p.velocity[v] -= p.inv_mass[v].cwiseProduct(f);
+  if constexpr (D == 2) {
+    p.velocity[v + 1][0] -= p.inv_mass[v + 1][0] * (arm[0] * f[1] - arm[1] * f[0]);
+  } else {
+    p.velocity[v + 1] -= p.inv_mass[v + 1].cwiseProduct(arm.cross(f));
+  }
+}
+
+// The force a contact row's stress change dl puts on its node, Lambda g_jj.
+template <int D>
+inline Vec<D> contact_force(const ConeProblem<D>& p, int j, const SymVec<D>& dl) {
+  return from_sym<D>(dl) * p.coupling[j].col(ConeProblem<D>::NS / 2);
+}
+
 // One exact local update of contact row j (cone_problem.hpp): the Coulomb
 // problem y = W r + b, y = F^T u the node's velocity in the contact frame.
 template <int D>
@@ -63,7 +94,9 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Vec<D> n = F.col(0);
   const Vec<D> r_old = F.transpose() * (from_sym<D>(p.lambda[j]) * n);
   const Vec<D> x_old = W.rotate(r_old);
-  const Vec<D> relative = p.velocity[p.node[j]] - p.contact_velocity[c];
+  const std::int64_t body = j >= p.first_body_row ? p.contact_body[c] : -1;
+  Vec<D> relative = p.velocity[p.node[j]] - p.contact_velocity[c];
+  if (body >= 0) relative -= body_point_velocity<D>(p, body, p.contact_arm[c]);
   const Vec<D> b = W.rotate(F.transpose() * relative) - W.apply_rotated(x_old);
   Vec<D> x;
   p.state[j] = solve_drucker_prager_rotated<D>(W, b, p.aperture[j], x, p.beta[j]);
@@ -73,6 +106,7 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Mat<D> dL = dr[0] * Mat<D>::Identity() + t * n.transpose() + n * t.transpose();
   const SymVec<D> dl = to_sym<D>(dL);
   scatter_stress<D>(p, j, dl);
+  if (body >= 0) push_body<D>(p, body, p.contact_arm[c], contact_force<D>(p, j, dl));
   p.lambda[j] += dl;
 }
 
@@ -325,7 +359,24 @@ void assemble_delassus(ConeProblem<D>& p) {
   for (int j = first; j < n; ++j) {
     const Mat<D>& F = p.contact_frame[j - first];
     const double w = p.coupling[j].col(centre).norm();
-    const Mat<D> Wc = w * F.transpose() * p.inv_mass[p.node[j]].asDiagonal() * F;
+    // Velocity change of the node relative to the contact per unit force:
+    // the node's inverse mass, plus the body's (cone_problem.hpp, push_body):
+    // M_b^{-1} + [a]x^T J^{-1} [a]x in 3D, M_b^{-1} + a_perp a_perp^T / J in 2D.
+    Mat<D> Wc = w * F.transpose() * p.inv_mass[p.node[j]].asDiagonal() * F;
+    if (j >= p.first_body_row && p.contact_body[j - first] >= 0) {
+      const std::int64_t v = p.contact_body[j - first];
+      const Vec<D>& a = p.contact_arm[j - first];
+      Mat<D> K = p.inv_mass[v].asDiagonal();
+      if constexpr (D == 2) {
+        const Vec<D> perp(-a[1], a[0]);
+        K += p.inv_mass[v + 1][0] * perp * perp.transpose();
+      } else {
+        Mat<D> A;
+        A << 0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0;  // [a]x
+        K += A.transpose() * p.inv_mass[v + 1].asDiagonal() * A;
+      }
+      Wc += w * F.transpose() * K * F;
+    }
     p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
   }
 }
@@ -338,6 +389,12 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
     for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) {
       if (p.lambda[j].squaredNorm() > 0.0) scatter_stress<D>(p, j, p.lambda[j]);
     }
+  }
+  // The bodies' reactions, in row order (rows share bodies).
+  for (int j = std::max(p.first_body_row, p.first_contact); j < p.rows(); ++j) {
+    const int c = j - p.first_contact;
+    if (p.contact_body[c] >= 0 && p.lambda[j].squaredNorm() > 0.0)
+      push_body<D>(p, p.contact_body[c], p.contact_arm[c], contact_force<D>(p, j, p.lambda[j]));
   }
 }
 
@@ -400,9 +457,18 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = p.velocity[free[q]];
       team.sync();
       for (int c = 0; c < ncol; ++c) {
-        const auto [c0, c1] = team.split(p.colour_start[c], p.colour_start[c + 1]);
+        // Rows before first_body_row in parallel, the bodies' rows after
+        // them in order on one thread (cone_problem.hpp).
+        const int begin = p.colour_start[c], end = p.colour_start[c + 1];
+        const int split = std::clamp(p.first_body_row, begin, end);
+        const auto [c0, c1] = team.split(begin, split);
         for (int j = c0; j < c1; ++j) update_row<D>(p, j);
         team.sync();
+        if (split < end) {
+          if (team.rank == 0)
+            for (int j = split; j < end; ++j) update_row<D>(p, j);
+          team.sync();
+        }
       }
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
       double sums[2];

@@ -20,7 +20,8 @@
 // Extra rows (frictional obstacles, METHOD.md section 3) have the same form
 // gamma_RB = sym(vbar n^T) = sym(sum_i u_i (w_ji n)^T): a row with its own
 // coupling vectors and aperture. Rigid bodies add velocity unknowns with their
-// own inverse inertia; both slot into this layout as further rows/unknowns.
+// own inverse inertia (appended to `velocity`, below); both slot into this
+// layout as further rows and unknowns.
 #pragma once
 
 #include <cstdint>
@@ -78,6 +79,25 @@ struct ConeProblem {
   std::vector<Mat<D>> contact_frame;              // per contact row j - first_contact
   std::vector<LocalDelassus<D>> contact_delassus;  // per contact row: w F^T M^{-1} F
   std::vector<Vec<D>> contact_velocity;  // per contact row: the obstacle's velocity (u is relative to it)
+
+  // Rigid bodies (METHOD.md section 3, two-way coupling). A body's velocity
+  // unknowns are two entries of `velocity` past the grid's nodes: at index
+  // v its linear velocity V, at v + 1 its angular velocity (2D: (omega, 0);
+  // 3D: omega), with inverse "masses" dt / m (per component) and dt / J_k,
+  // J_k the principal moments of inertia about world axes (bodies whose
+  // inertia tensor is diagonal in world axes: disks, spheres; 0 on the
+  // unused component in 2D). Being ordinary velocity entries, they enter the
+  // residual's kinetic-energy norm and the Anderson mixing unchanged.
+  // Contact rows [first_body_row, rows()) touch a body: contact_body gives
+  // the index v of their body's entries, contact_arm the lever arm x_node -
+  // centre (m). Their relative velocity is u_node - (V + omega x arm), and
+  // their stress pushes the body back with the opposite force. Rows that
+  // share a body are not independent, so the solver updates these rows one
+  // after the other, in order, on one thread (results stay independent of
+  // the thread count); they must come last.
+  int first_body_row = std::numeric_limits<int>::max();  // none unless set
+  std::vector<std::int64_t> contact_body;  // per contact row: the body's velocity index, or -1
+  std::vector<Vec<D>> contact_arm;         // per contact row: node position - body centre, m
 
   int rows() const { return static_cast<int>(node.size()); }
   void resize_rows(int n);
