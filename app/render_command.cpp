@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 #include "commands.hpp"
@@ -111,6 +112,24 @@ std::vector<ObstacleConfig> read_obstacles(const fs::path& dir, int dimension) {
   return {};
 }
 
+// The rigid bodies' track (bodies.csv) when the run has bodies. Without a
+// readable one the bodies are drawn where the scene starts them, with a
+// warning.
+std::vector<BodyRow> read_bodies(const fs::path& dir, const std::vector<ObstacleConfig>& obstacles,
+                                 int dimension) {
+  bool any = false;
+  for (const ObstacleConfig& o : obstacles) any = any || o.dynamic();
+  if (!any) return {};
+  const fs::path path = dir / "bodies.csv";
+  try {
+    return parse_bodies_until(read_file(path.string()), dimension, std::numeric_limits<long>::max());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "warning: render: %s: %s; bodies drawn where they start\n",
+                 path.string().c_str(), e.what());
+  }
+  return {};
+}
+
 Scene survey(const std::vector<FrameFile>& frames, const fs::path& dir, RenderOptions opt) {
   Scene s;
   s.range = empty_range();
@@ -130,6 +149,7 @@ Scene survey(const std::vector<FrameFile>& frames, const fs::path& dir, RenderOp
   if (s.box.lo[0] > s.box.hi[0]) throw BadInput("the frames hold no particles");
   if (opt.height == 0) opt.height = auto_height(s.box, opt.view, opt.width);
   opt.obstacles = read_obstacles(dir, dimension);
+  opt.bodies = read_bodies(dir, opt.obstacles, dimension);
   s.options = opt;
   return s;
 }

@@ -46,8 +46,16 @@ void on_signal(int) { g_interrupted = 1; }
 
 // Files a run writes at the top of its folder: their presence means the
 // folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv", "obstacles.csv", "series.pvd", "grid_series.pvd",
+const char* const kRunFiles[] = {"stats.csv", "obstacles.csv", "bodies.csv", "series.pvd", "grid_series.pvd",
                                  "scene.toml", "run.json",     "checkpoint.bin"};
+
+std::size_t count_bodies(const SceneConfig& scene) {
+  std::size_t n = 0;
+  for (const ObstacleConfig& o : scene.obstacles) n += o.dynamic() ? 1 : 0;
+  return n;
+}
+
+bool has_bodies(const SceneConfig& scene) { return count_bodies(scene) > 0; }
 
 bool holds_run_outputs(const fs::path& dir) {
   for (const char* f : kRunFiles)
@@ -129,9 +137,10 @@ class Runner {
   // Continues after the checkpoint's frame and substep, with the stats rows
   // of the steps it covers.
   int resume(const Checkpoint& c, std::vector<StepStats> rows,
-             std::vector<ObstacleForceRow> forces) {
+             std::vector<ObstacleForceRow> forces, std::vector<BodyRow> bodies) {
     for (StepStats& s : rows) stats_.add(s);
     forces_ = std::move(forces);
+    bodies_ = std::move(bodies);
     frame_times_ = c.frame_times;
     if (writes("vtp"))
       for (std::size_t f = 0; f < frame_times_.size(); ++f)
@@ -210,6 +219,21 @@ class Runner {
       for (int a = 0; a < 3; ++a) r.force[a] = info.obstacle_force[k][a];
       forces_.push_back(r);
     }
+    const auto& obstacles = sim_.obstacles();
+    for (std::size_t k = 0; k < obstacles.size(); ++k) {
+      if (!obstacles[k].dynamic) continue;
+      BodyRow b;
+      b.step = s.step;
+      b.time = s.time;
+      b.obstacle = static_cast<int>(k);
+      for (int a = 0; a < D; ++a) {
+        b.centre[a] = obstacles[k].a[a];
+        b.velocity[a] = obstacles[k].velocity[a];
+      }
+      for (int a = 0; a < (D == 2 ? 1 : 3); ++a) b.spin[a] = obstacles[k].spin[a];
+      b.angle = obstacles[k].angle;
+      bodies_.push_back(b);
+    }
   }
 
   // stats.csv, and obstacles.csv when the scene has obstacles.
@@ -218,6 +242,8 @@ class Runner {
     if (!scene_.obstacles.empty())
       write_file_atomic((set_.dir / "obstacles.csv").string(),
                         obstacle_forces_csv(forces_, scene_.dimension));
+    if (has_bodies(scene_))
+      write_file_atomic((set_.dir / "bodies.csv").string(), bodies_csv(bodies_, scene_.dimension));
   }
 
   // The frame's files, then stats.csv, then the checkpoint: a run killed
@@ -297,6 +323,7 @@ class Runner {
   Simulation<D> sim_;
   StatsTable stats_;
   std::vector<ObstacleForceRow> forces_;
+  std::vector<BodyRow> bodies_;
   std::vector<SeriesEntry> series_, grid_series_;
   std::vector<double> frame_times_;
   RunRecord record_;
@@ -386,8 +413,35 @@ int resume_from(const SceneConfig& scene, RunSettings set, const Checkpoint& c,
     if (!fs::exists(path)) throw CheckpointError(path.string() + ": missing; cannot resume");
     forces = parse_obstacle_forces_until(read_file(path.string()), scene.dimension, c.steps);
   }
+  // The bodies' state is not in the checkpoint: bodies.csv holds it, to the
+  // last bit, for every step.
+  std::vector<BodyRow> bodies;
+  if (has_bodies(scene)) {
+    const fs::path path = set.dir / "bodies.csv";
+    if (!fs::exists(path)) throw CheckpointError(path.string() + ": missing; cannot resume");
+    bodies = parse_bodies_until(read_file(path.string()), scene.dimension, c.steps);
+    std::size_t restored = 0;
+    for (const BodyRow& b : bodies) {
+      if (b.step != c.steps) continue;
+      Vec<D> x, v, w = Vec<D>::Zero();
+      for (int a = 0; a < D; ++a) {
+        x[a] = b.centre[a];
+        v[a] = b.velocity[a];
+      }
+      for (int a = 0; a < (D == 2 ? 1 : 3); ++a) w[a] = b.spin[a];
+      if (b.obstacle < 0 || static_cast<std::size_t>(b.obstacle) >= scene.obstacles.size() ||
+          !scene.obstacles[b.obstacle].dynamic())
+        throw CheckpointError(path.string() + ": a row names an obstacle that is not a body; cannot resume");
+      sim.set_body_state(b.obstacle, x, v, w, b.angle);
+      ++restored;
+    }
+    const std::size_t expected = c.steps > 0 ? count_bodies(scene) : 0;
+    if (restored != expected)
+      throw CheckpointError(fmt::format("{}: holds {} body states for step {}, expected {}; cannot resume",
+                                        path.string(), restored, c.steps, expected));
+  }
   return Runner<D>(scene, std::move(set), std::move(sim))
-      .resume(c, std::move(rows), std::move(forces));
+      .resume(c, std::move(rows), std::move(forces), std::move(bodies));
 }
 
 int resume_run(const RunOptions& opt) {

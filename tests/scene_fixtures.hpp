@@ -112,6 +112,12 @@ shape = "disk"
 center = [1.7, 0.8]
 radius = 0.05
 mu = 0.0
+[[obstacle]]
+shape = "disk"
+center = [1.2, 0.7]
+radius = 0.04
+density = 7800
+velocity = [0.5, -1.0]
 )";
 
 inline std::string replace(std::string s, const std::string& from, const std::string& to) {
@@ -212,6 +218,7 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
     EXPECT_EQ(p.normal, q.normal);
     EXPECT_EQ(p.min, q.min);
     EXPECT_EQ(p.max, q.max);
+    EXPECT_EQ(p.density, q.density);
     EXPECT_EQ(p.center, q.center);
     EXPECT_EQ(p.radius, q.radius);
     EXPECT_EQ(p.height, q.height);

@@ -172,5 +172,66 @@ void body_held_by_bed() {
 TEST(Bodies, BuriedBallIsHeldByTheBed2D) { body_held_by_bed<2>(); }
 TEST(Bodies, BuriedBallIsHeldByTheBed3D) { body_held_by_bed<3>(); }
 
+// A ball of density 2500 thrown down at 1 m/s onto a bed whose surface is at
+// `surface`, run for `duration` s (the whole simulation: scene keys, the
+// body's rows, its motion). Sources: the body's momentum balance, step by
+// step, m (V_n - V_{n-1}) = (F_n + m g) dt_n with F_n the force of the sand
+// on it (the solver gives the body V_f = V + g dt plus the impulse of its
+// rows); and statics once it has stopped: over the second half of the run
+// the sand carries its weight (the mean force, weighted by dt, equals m g to
+// 1%), it has stopped (below 5 cm/s, from 1 m/s) and it rests in the
+// surface: sunk, but by less than its radius.
+template <int D>
+void dropped_ball(const SceneConfig& s, double surface, double duration) {
+  Simulation<D> sim(s);
+  ASSERT_TRUE(sim.obstacles()[0].dynamic);
+  const double m = sim.obstacles()[0].mass, r = sim.obstacles()[0].radius;
+  Vec<D> g;
+  for (int a = 0; a < D; ++a) g[a] = s.gravity[a];
+  Vec<D> v_prev = sim.obstacles()[0].velocity;
+  double worst = 0.0, impulse = 0.0, span = 0.0;
+  while (sim.time() < duration - 1e-12) {
+    const double dt = sim.adaptive_dt(duration - sim.time());
+    const StepInfo info = sim.step(dt);
+    const Obstacle<D>& b = sim.obstacles()[0];
+    Vec<D> force;
+    for (int a = 0; a < D; ++a) force[a] = info.obstacle_force[0][a];
+    const Vec<D> gained = m * (b.velocity - v_prev) - (force + m * g) * dt;
+    worst = std::max(worst, gained.norm() / (m * g.norm() * dt));
+    v_prev = b.velocity;
+    if (sim.time() > 0.5 * duration) {
+      impulse += force[D - 1] * dt;
+      span += dt;
+    }
+  }
+  const Obstacle<D>& b = sim.obstacles()[0];
+  const double weight = m * g.norm();
+  std::cout << D << "D ball dropped on a bed: after " << duration << " s centre height " << b.a[D - 1]
+            << " m (surface " << surface << ", radius " << r << "), speed " << b.velocity.norm()
+            << " m/s, mean force of the sand over the second half " << impulse / span
+            << " N against weight " << weight << " N; momentum balance to " << worst << "\n";
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_NEAR(impulse / span, weight, 0.01 * weight);
+  EXPECT_LT(b.velocity.norm(), 0.05);
+  EXPECT_LT(b.a[D - 1], surface + r);
+  EXPECT_GT(b.a[D - 1], surface - r);
+}
+
+TEST(Bodies, DroppedDiskIsCaughtByTheBed2D) {
+  dropped_ball<2>(scene("drop2d.toml", {"time.frames=30"}), 0.15, 1.0);
+}
+
+TEST(Bodies, DroppedSphereIsCaughtByTheBed3D) {
+  SceneConfig s = scene("bed3d.toml");
+  ObstacleConfig ball;
+  ball.shape = ObstacleShape::Ball;
+  ball.center = Vec3d{0.25, 0.125, 0.32};
+  ball.radius = 0.05;
+  ball.density = 2500.0;
+  ball.velocity = Vec3d{0, 0, -1.0};
+  s.obstacles.push_back(ball);
+  dropped_ball<3>(s, 0.25, 0.4);
+}
+
 }  // namespace
 }  // namespace sablier

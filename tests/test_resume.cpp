@@ -113,6 +113,35 @@ TEST(Resume, WithObstaclesContinuesBitForBit) {
   fs::remove_all(b);
 }
 
+// A rigid body's state is not in the checkpoint: a resumed run takes it
+// from bodies.csv, cut back to the checkpoint's steps, and continues bit for
+// bit (bodies.csv, frames and stats as the uninterrupted run's).
+TEST(Resume, WithABodyContinuesBitForBit) {
+  const fs::path a = fresh("body_a"), b = fresh("body_b");
+  const std::string args = "run " + scene_file("drop2d.toml") +
+                           " --set time.frames=6 --threads 1 --quiet --out ";
+  ASSERT_EQ(sablier(args + a.string()).code, 0);
+  const Result stopped = sablier(args + b.string() + " --stop-after-frame 3");
+  ASSERT_EQ(stopped.code, 130) << stopped.output;
+  const Result resumed = sablier("run --resume " + b.string() + " --threads 1 --quiet");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  for (const char* f : {"frames/particles_00004.vtp", "frames/particles_00006.vtp", "obstacles.csv",
+                        "bodies.csv"})
+    EXPECT_EQ(file(a / f), file(b / f)) << f;
+  expect_same_stats(a, b);
+  const auto rows = parse_bodies_until(file(a / "bodies.csv"), 2, 1L << 40);
+  EXPECT_EQ(rows.size(), parse_stats_csv(file(a / "stats.csv")).size());
+  // Without bodies.csv there is nothing to resume the body from.
+  const Result stopped_again = sablier(args + b.string() + " --overwrite --stop-after-frame 3");
+  ASSERT_EQ(stopped_again.code, 130) << stopped_again.output;
+  fs::remove(b / "bodies.csv");
+  const Result refused = sablier("run --resume " + b.string() + " --threads 1 --quiet");
+  EXPECT_NE(refused.code, 0);
+  EXPECT_TRUE(contains(refused.output, "bodies.csv: missing; cannot resume")) << refused.output;
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
 // A real signal lands anywhere, mostly within a frame: fixed substeps make
 // the resumed run depend on how many steps of the frame were done. A run
 // killed outright (-9) resumes from the checkpoint of its last frame.

@@ -82,7 +82,13 @@ TEST(SceneFile, EveryKey2D) {
   disk.center = v(1.7, 0.8);
   disk.radius = 0.05;
   disk.mu = 0.0;
-  e.obstacles = {plane, box, disk};
+  ObstacleConfig body;  // a rigid body: a disk with a density, thrown
+  body.shape = ObstacleShape::Ball;
+  body.center = v(1.2, 0.7);
+  body.radius = 0.04;
+  body.density = 7800;
+  body.velocity = v(0.5, -1.0);
+  e.obstacles = {plane, box, disk, body};
   expect_same(parse_scene(kFull2D, "full.toml"), e);
 }
 

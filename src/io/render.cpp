@@ -425,10 +425,26 @@ void draw_legend(Canvas& canvas, const Layout& l, const Camera::Rect& box, const
   canvas.text(static_cast<int>(std::lround(box.x0)), text_y, t, kInk, s);
 }
 
+// The obstacles as at time t: the rigid bodies moved to their track's last
+// row at or before t (their scene position before the first row).
+std::vector<ObstacleConfig> obstacles_at_frame(const RenderOptions& opt, double t) {
+  std::vector<ObstacleConfig> out = opt.obstacles;
+  const double until = t + 1e-9 * std::max(1.0, std::abs(t));
+  for (const BodyRow& b : opt.bodies) {
+    if (b.time > until) continue;
+    if (b.obstacle < 0 || static_cast<std::size_t>(b.obstacle) >= out.size()) continue;
+    ObstacleConfig& o = out[b.obstacle];
+    if (!o.dynamic()) continue;
+    for (int a = 0; a < 3; ++a) o.center[a] = b.centre[a];
+  }
+  return out;
+}
+
 }  // namespace
 
 Canvas render_frame(const ParticleFrame& f, const Box& box, const Range& range,
                     const RenderOptions& opt) {
+  const std::vector<ObstacleConfig> obstacles = obstacles_at_frame(opt, f.time);
   if (f.dimension != box.dimension) throw IoError("the frame and the box differ in dimension");
   check_attribute(f, opt.color);
   if (f.volume.size() != f.count) throw IoError("the frame has no particle volumes");
@@ -437,13 +453,13 @@ Canvas render_frame(const ParticleFrame& f, const Box& box, const Range& range,
   const Camera cam(box, opt.view, opt.width, height);
   const Layout l = layout(opt.width, height);
   if (f.dimension == 2) {
-    fill_obstacles_2d(canvas, opt.obstacles, f.time, box, cam, l.scale);
+    fill_obstacles_2d(canvas, obstacles, f.time, box, cam, l.scale);
     draw_discs(canvas, f, cam, range, opt.color);
     draw_outline_2d(canvas, box, cam, l.scale);
   } else {
     std::vector<float> zbuf(static_cast<std::size_t>(canvas.width()) * canvas.height(),
                             std::numeric_limits<float>::infinity());
-    draw_obstacles_3d(canvas, zbuf, opt.obstacles, f.time, box, cam, l.scale);
+    draw_obstacles_3d(canvas, zbuf, obstacles, f.time, box, cam, l.scale);
     draw_spheres(canvas, zbuf, f, box, cam, range, opt.color, l.scale);
   }
   draw_legend(canvas, l, cam.content(), range, opt.color, f.time);

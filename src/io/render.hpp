@@ -9,6 +9,7 @@
 
 #include "io/image.hpp"
 #include "io/particle_frame.hpp"
+#include "io/stats_writer.hpp"
 #include "scene/scene.hpp"
 
 namespace sablier {
@@ -72,6 +73,9 @@ struct RenderOptions {
   // The scene's [[obstacle]] blocks (of the frame's dimension), drawn in
   // grey where they were at the frame's time, clipped to the box.
   std::vector<ObstacleConfig> obstacles;
+  // The rigid bodies' track (bodies.csv): each body is drawn where its
+  // last row at or before the frame's time puts it.
+  std::vector<BodyRow> bodies;
 };
 
 // Picture height that fits the box at `width` with no empty bands.

@@ -99,6 +99,28 @@ namespace {
 std::string obstacle_header(int dimension) {
   return dimension == 2 ? "step,time,obstacle,fx,fy" : "step,time,obstacle,fx,fy,fz";
 }
+
+std::string bodies_header(int dimension) {
+  return dimension == 2 ? "step,time,obstacle,x,y,vx,vy,omega,angle"
+                        : "step,time,obstacle,x,y,z,vx,vy,vz,wx,wy,wz";
+}
+
+// The numbers of one CSV row; false on a malformed cell.
+bool parse_numbers(const std::string& line, std::vector<double>& v) {
+  v.clear();
+  std::istringstream ls(line);
+  std::string cell;
+  while (std::getline(ls, cell, ',')) {
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(cell, &used));
+      if (used != cell.size()) return false;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+  return true;
+}
 }  // namespace
 
 std::string obstacle_forces_csv(const std::vector<ObstacleForceRow>& rows, int dimension) {
@@ -119,27 +141,64 @@ std::vector<ObstacleForceRow> parse_obstacle_forces_until(const std::string& tex
   if (!std::getline(in, line) || line != obstacle_header(dimension))
     throw IoError("obstacles.csv: bad header");
   std::vector<ObstacleForceRow> rows;
+  std::vector<double> v;
   while (std::getline(in, line) && !in.eof()) {
-    std::vector<double> v;
-    std::istringstream ls(line);
-    std::string cell;
-    bool ok = true;
-    while (ok && std::getline(ls, cell, ',')) {
-      try {
-        std::size_t used = 0;
-        v.push_back(std::stod(cell, &used));
-        ok = used == cell.size();
-      } catch (const std::exception&) {
-        ok = false;
-      }
-    }
-    if (!ok || static_cast<int>(v.size()) != 3 + dimension) break;
+    if (!parse_numbers(line, v) || static_cast<int>(v.size()) != 3 + dimension) break;
     ObstacleForceRow r;
     r.step = static_cast<long>(v[0]);
     if (r.step > last_step) break;
     r.time = v[1];
     r.obstacle = static_cast<int>(v[2]);
     for (int a = 0; a < dimension; ++a) r.force[a] = v[3 + a];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::string bodies_csv(const std::vector<BodyRow>& rows, int dimension) {
+  fmt::memory_buffer out;
+  auto put = [&](double x) { fmt::format_to(std::back_inserter(out), ",{}", x); };
+  fmt::format_to(std::back_inserter(out), "{}\n", bodies_header(dimension));
+  for (const BodyRow& r : rows) {
+    fmt::format_to(std::back_inserter(out), "{},{},{}", r.step, r.time, r.obstacle);
+    for (int a = 0; a < dimension; ++a) put(r.centre[a]);
+    for (int a = 0; a < dimension; ++a) put(r.velocity[a]);
+    if (dimension == 2) {
+      put(r.spin[0]);
+      put(r.angle);
+    } else {
+      for (int a = 0; a < 3; ++a) put(r.spin[a]);
+    }
+    fmt::format_to(std::back_inserter(out), "\n");
+  }
+  return fmt::to_string(out);
+}
+
+std::vector<BodyRow> parse_bodies_until(const std::string& text, int dimension, long last_step) {
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line) || line != bodies_header(dimension))
+    throw IoError("bodies.csv: bad header");
+  const int columns = dimension == 2 ? 9 : 12;
+  std::vector<BodyRow> rows;
+  std::vector<double> v;
+  while (std::getline(in, line) && !in.eof()) {
+    if (!parse_numbers(line, v) || static_cast<int>(v.size()) != columns) break;
+    BodyRow r;
+    r.step = static_cast<long>(v[0]);
+    if (r.step > last_step) break;
+    r.time = v[1];
+    r.obstacle = static_cast<int>(v[2]);
+    for (int a = 0; a < dimension; ++a) {
+      r.centre[a] = v[3 + a];
+      r.velocity[a] = v[3 + dimension + a];
+    }
+    if (dimension == 2) {
+      r.spin[0] = v[7];
+      r.angle = v[8];
+    } else {
+      for (int a = 0; a < 3; ++a) r.spin[a] = v[9 + a];
+    }
     rows.push_back(r);
   }
   return rows;

@@ -55,4 +55,25 @@ std::string obstacle_forces_csv(const std::vector<ObstacleForceRow>& rows, int d
 std::vector<ObstacleForceRow> parse_obstacle_forces_until(const std::string& text, int dimension,
                                                           long last_step);
 
+// The state of the scene's rigid bodies (bodies.csv: [[obstacle]] blocks
+// with a density) at the end of each step: one row per step and body,
+// 2D `step,time,obstacle,x,y,vx,vy,omega,angle`, 3D
+// `step,time,obstacle,x,y,z,vx,vy,vz,wx,wy,wz`: centre (m), velocity (m/s),
+// angular velocity (rad/s) and, in 2D, the angle turned through since the
+// start (rad, counter-clockwise). Numbers are written to round trip, so a
+// resumed run restarts from the exact state.
+struct BodyRow {
+  long step = 0;
+  double time = 0.0;
+  int obstacle = 0;
+  double centre[3] = {0, 0, 0};
+  double velocity[3] = {0, 0, 0};
+  double spin[3] = {0, 0, 0};  // 2D: spin[0] = omega
+  double angle = 0.0;          // 2D only
+};
+
+std::string bodies_csv(const std::vector<BodyRow>& rows, int dimension);
+// As parse_obstacle_forces_until.
+std::vector<BodyRow> parse_bodies_until(const std::string& text, int dimension, long last_step);
+
 }  // namespace sablier

@@ -171,7 +171,13 @@ std::int32_t spout_material_index(const SceneConfig& scene) {
 template <int D>
 void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p) {
   if (scene.spouts.empty()) return;
-  const std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene, t1);
+  // The fixed obstacles: grains are not emitted inside them. Rigid bodies
+  // move, so they are left out; a grain emitted inside one is put back on
+  // its surface by the next advection.
+  std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene, t1);
+  obstacles.erase(std::remove_if(obstacles.begin(), obstacles.end(),
+                                 [](const Obstacle<D>& o) { return o.dynamic; }),
+                  obstacles.end());
   for (std::size_t i = 0; i < scene.spouts.size(); ++i) {
     const SpoutConfig& sp = scene.spouts[i];
     const double s = spout_spacing(scene, sp);

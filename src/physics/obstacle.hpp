@@ -21,7 +21,15 @@ struct Obstacle {
   double radius = 0.0;
   double height = 0.0;
   double mu = 0.5;  // Coulomb coefficient (scene convention, METHOD.md section 4)
-  Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation
+  Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
+  // A rigid body (a ball with a density): its state is advanced by the
+  // simulation, not by at_time. Mass in kg (kg/m in 2D), moment of inertia
+  // about its centre in kg m^2 (kg m in 2D), angular velocity in rad/s
+  // (2D: spin[0]), and in 2D the angle it has turned through (rad).
+  bool dynamic = false;
+  double mass = 0.0, inertia = 0.0;
+  Vec<D> spin = Vec<D>::Zero();
+  double angle = 0.0;
 };
 
 template <int D>
@@ -49,12 +57,22 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   o.height = c.height;
   o.mu = c.mu;
   for (int k = 0; k < D; ++k) o.velocity[k] = c.velocity[k];
+  if (c.dynamic()) {
+    constexpr double pi = 3.14159265358979323846;
+    const double r = c.radius;
+    o.dynamic = true;
+    o.mass = c.density * (D == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r);
+    o.inertia = (D == 2 ? 0.5 : 0.4) * o.mass * r * r;  // disk, solid sphere
+  }
   return o;
 }
 
-// The obstacle where its motion has taken it at time t (s).
+// The obstacle where its motion has taken it at time t (s). A rigid body
+// moves as the sand pushes it: its state is the simulation's, not a
+// function of t, and it is returned as it is.
 template <int D>
 Obstacle<D> at_time(Obstacle<D> o, double t) {
+  if (o.dynamic) return o;
   const Vec<D> shift = t * o.velocity;
   o.a += shift;
   if (o.shape == ObstacleShape::Box) o.b += shift;

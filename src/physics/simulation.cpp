@@ -154,6 +154,57 @@ void Simulation<D>::build_rows(double dt) {
   }
 }
 
+// Each rigid body's velocities become two entries of the cone problem's
+// velocity vector past the grid's nodes (cone_problem.hpp): V_f = V + g dt
+// and its angular velocity, with inverse masses dt / m and dt / J; its
+// contact rows get the entry's index and their lever arms from the centre.
+template <int D>
+void Simulation<D>::attach_bodies(double dt) {
+  ConeProblem<D>& P = problem_;
+  const std::int64_t nodes = grid_.node_count();
+  P.velocity.resize(nodes);
+  P.inv_mass.resize(nodes);
+  std::vector<std::int64_t> entry(obstacles_.size(), -1);
+  for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+    const Obstacle<D>& o = obstacles_[k];
+    if (!o.dynamic) continue;
+    entry[k] = static_cast<std::int64_t>(P.velocity.size());
+    P.velocity.push_back(o.velocity + dt * gravity_);
+    P.velocity.push_back(o.spin);
+    P.inv_mass.push_back(Vec<D>::Constant(dt / o.mass));
+    Vec<D> spin_inverse = Vec<D>::Constant(dt / o.inertia);
+    if constexpr (D == 2) spin_inverse[1] = 0.0;  // 2D: one rotation, about z
+    P.inv_mass.push_back(spin_inverse);
+  }
+  const int contacts = P.rows() - P.first_contact;
+  P.contact_body.assign(std::max(contacts, 0), -1);
+  P.contact_arm.assign(std::max(contacts, 0), Vec<D>::Zero());
+  const double h = grid_.h();
+  for (int j = std::max(P.first_body_row, P.first_contact); j < P.rows(); ++j) {
+    const int c = j - P.first_contact;
+    const int k = obstacle_index_[c];
+    const auto n = grid_.node_coords(P.node[j]);
+    P.contact_body[c] = entry[k];
+    for (int a = 0; a < D; ++a) P.contact_arm[c][a] = n[a] * h - obstacles_[k].a[a];
+  }
+}
+
+// The solve gave each body its velocities at the end of the step; it moves
+// with them (the same semi-implicit Euler step as the grains).
+template <int D>
+void Simulation<D>::move_bodies(double dt) {
+  const ConeProblem<D>& P = problem_;
+  std::int64_t v = grid_.node_count();
+  for (Obstacle<D>& o : obstacles_) {
+    if (!o.dynamic) continue;
+    o.velocity = P.velocity[v];
+    o.spin = P.velocity[v + 1];
+    o.a += dt * o.velocity;
+    if constexpr (D == 2) o.angle += dt * o.spin[0];
+    v += 2;
+  }
+}
+
 // u_f = (M + A)^{-1} l (METHOD.md step 3) and the inverse masses dt / m_i,
 // m_i = rho_0 node_mass_ = sum_p rho_p V_p N_i; a division per node without
 // viscosity, conjugate gradients with it.
@@ -190,6 +241,7 @@ StepInfo Simulation<D>::step(double dt) {
 
   t0 = Clock::now();
   info.viscous_iterations = unconstrained_velocity(dt);
+  attach_bodies(dt);
   assemble_delassus(problem_);
   info.timings.assembly = seconds_since(t0);
 
@@ -218,6 +270,7 @@ StepInfo Simulation<D>::step(double dt) {
     Vec3d& total = info.obstacle_force[obstacle_index_[j - obstacle_row_start_]];
     for (int a = 0; a < D; ++a) total[a] -= f[a];
   }
+  move_bodies(dt);
   transfer_to_particles(dt);
   info.timings.advection = seconds_since(t0);
 

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -75,11 +77,23 @@ class Simulation {
   const ConeProblem<D>& problem() const { return problem_; }
 
   const std::vector<Material>& materials() const { return materials_; }
-  const std::vector<Obstacle<D>>& obstacles() const { return obstacles_; }  // at t = 0
+  // Fixed and kinematic obstacles as at t = 0; rigid bodies as they are now.
+  const std::vector<Obstacle<D>>& obstacles() const { return obstacles_; }
   std::vector<Obstacle<D>> obstacles_at(double t) const {
     std::vector<Obstacle<D>> out;
     for (const Obstacle<D>& o : obstacles_) out.push_back(at_time(o, t));
     return out;
+  }
+  // Sets rigid body k's state (the [[obstacle]] of index k, which must have
+  // a density): a resumed run takes it from bodies.csv.
+  void set_body_state(std::size_t k, const Vec<D>& centre, const Vec<D>& velocity,
+                      const Vec<D>& spin, double angle) {
+    Obstacle<D>& o = obstacles_.at(k);
+    if (!o.dynamic) throw std::invalid_argument("obstacle " + std::to_string(k) + " is not a body");
+    o.a = centre;
+    o.velocity = velocity;
+    o.spin = spin;
+    o.angle = angle;
   }
   // First stress row of the obstacles (rows before it are the sand's nodes).
   int first_obstacle_row() const { return obstacle_row_start_; }
@@ -115,6 +129,10 @@ class Simulation {
   void transfer_to_grid(double dt);
   void build_rows(double dt);
   int unconstrained_velocity(double dt);
+  // Rigid bodies (METHOD.md section 3): their velocity unknowns in the cone
+  // problem, and their motion over the step once it is solved.
+  void attach_bodies(double dt);
+  void move_bodies(double dt);
   void transfer_to_particles(double dt);
   void emit_from_spouts(double start);  // sources: particles entering during the step
   bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;

@@ -92,6 +92,9 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
     int which;
   };
   std::vector<std::vector<Contact>> obstacle_by_colour;
+  // Rigid bodies' rows come last, in one group that the solver updates in
+  // order on one thread (they share their body's velocity; cone_problem.hpp).
+  std::vector<Contact> body_contacts;
   std::vector<double> solid(sand_rows, 0.0);
   if (!obstacles.empty()) {
     obstacle_by_colour.resize(by_colour.size());
@@ -104,12 +107,20 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
         int which = 0;
         const double dist = obstacle_distance(obstacles, x, &n, &which);
         solid[r++] = solid_fraction(dist, h);
-        if (dist < h) obstacle_by_colour[colour].push_back({node, n, which});
+        if (dist >= h) continue;
+        (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[colour]).push_back({node, n, which});
       }
     for (const auto& list : obstacle_by_colour) {
       rows += static_cast<int>(list.size());
       P.colour_start.push_back(rows);
     }
+  }
+  P.first_body_row = std::numeric_limits<int>::max();
+  if (!body_contacts.empty()) {
+    P.first_body_row = rows;
+    rows += static_cast<int>(body_contacts.size());
+    P.colour_start.push_back(rows);
+    obstacle_by_colour.push_back(std::move(body_contacts));
   }
   P.resize_rows(rows);
   int r = 0;
@@ -131,7 +142,9 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
       P.coupling[r].setZero();
       obstacle_index_.push_back(c.which);
       P.contact_frame.push_back(contact_frame<D>(c.normal));
-      P.contact_velocity.push_back(obstacles[c.which].velocity);
+      // A body's own motion enters through its velocity unknowns instead.
+      P.contact_velocity.push_back(obstacles[c.which].dynamic ? Vec<D>::Zero()
+                                                              : obstacles[c.which].velocity);
       ++r;
     }
   row_solid_ = std::move(solid);

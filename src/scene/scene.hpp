@@ -126,8 +126,10 @@ struct SpoutConfig {
   double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
 };
 
-// An [[obstacle]] block: a fixed solid that sand cannot enter and slides on
-// with Coulomb friction `mu` (METHOD.md section 3; physics/obstacle.hpp).
+// An [[obstacle]] block: a solid that sand cannot enter and slides on with
+// Coulomb friction `mu` (METHOD.md section 3; physics/obstacle.hpp): fixed,
+// a plane moving along itself, or, with a density, a rigid disk or sphere
+// that the sand pushes.
 // "disk" (2D) and "sphere" (3D) are both Ball; Cylinder is 3D only (axis
 // along z, `center` the centre of its base). A plane's solid side is the one
 // its normal points away from.
@@ -144,6 +146,11 @@ struct ObstacleConfig {
   double height = 0.0;    // cylinder, m
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
   Vec3d velocity{0, 0, 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
+  // kg/m^3: 0 for a fixed (or kinematic) obstacle; > 0 makes a disk or
+  // sphere a rigid body that the sand pushes (two-way coupling, METHOD.md
+  // section 3), starting at `velocity` and falling under gravity.
+  double density = 0.0;
+  bool dynamic() const { return density > 0.0; }
 };
 
 // The same bound as material.mu. The paper's form (the full tensor in

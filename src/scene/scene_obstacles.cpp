@@ -16,6 +16,7 @@ using Names = std::vector<std::string>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const Range kPositive{0.0, kInf, true, false};
 const Range kMuRange{0.0, kMaxObstacleMu, false, false};
+const Range kDensityRange{0.0, 1e5, true, false};  // kg/m^3: above 0, up to 100 t/m^3
 
 const Names kShapes2D{"plane", "box", "disk"};
 const Names kShapes3D{"plane", "box", "sphere", "cylinder"};
@@ -117,7 +118,7 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
 // 0.4 m/s and compacted it to phi 1.1, with solves at their cap).
 void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
   const double speed = length(o.velocity);
-  if (speed == 0.0) return;
+  if (speed == 0.0 || o.dynamic()) return;
   double normal = 0.0;
   for (int a = 0; a < d; ++a) normal += o.velocity[a] * o.normal[a];
   if (o.shape == ObstacleShape::Plane && std::abs(normal) <= 1e-12 * speed) return;
@@ -126,9 +127,9 @@ void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
                 ? fmt::format("has a component {} m/s along the plane's normal; allowed: a plane "
                               "moving along itself (a conveyor belt), velocity . normal = 0",
                               normal)
-                : fmt::format("a {} cannot move; allowed: velocity on planes only, along the "
-                              "plane (a conveyor belt); solids moving into the sand are not "
-                              "supported yet",
+                : fmt::format("a fixed {} cannot move; allowed: velocity on planes only, "
+                              "along the plane (a conveyor belt), or as the initial velocity "
+                              "of a rigid body (a disk or sphere with a density)",
                               obstacle_shape_name(o.shape, d)));
 }
 
@@ -165,6 +166,13 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   read_geometry(t, shape, o, d);
   o.mu = read_mu(t);
   o.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
+  if (t.has("density")) {
+    if (o.shape != ObstacleShape::Ball)
+      t.fail_at(t.node("density"), "density",
+                fmt::format("a {} cannot be a rigid body yet; allowed: density on a {} only",
+                            obstacle_shape_name(o.shape, d), d == 2 ? "disk" : "sphere"));
+    o.density = t.number("density", std::nullopt, kDensityRange);
+  }
   check_motion(t, o, d);
   t.reject_unknown();
   if (o.shape == ObstacleShape::Plane) {
@@ -203,6 +211,7 @@ std::vector<std::string> obstacle_scene_keys() {
   for (const std::string& k : kGeometryKeys) keys.push_back("obstacle[]." + k);
   keys.push_back("obstacle[].mu");
   keys.push_back("obstacle[].velocity");
+  keys.push_back("obstacle[].density");
   return keys;
 }
 

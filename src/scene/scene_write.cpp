@@ -117,7 +117,9 @@ std::string obstacle_lines(const ObstacleConfig& o, int d) {
       if (o.shape == ObstacleShape::Cylinder) out += fmt::format("height = {}\n", num(o.height));
       break;
   }
-  return out + fmt::format("mu = {}\nvelocity = {}\n", num(o.mu), vecf(o.velocity, d));
+  out += fmt::format("mu = {}\nvelocity = {}\n", num(o.mu), vecf(o.velocity, d));
+  if (o.dynamic()) out += fmt::format("density = {}\n", num(o.density));
+  return out;
 }
 
 const char* boundary_name(BoundaryType t) {
