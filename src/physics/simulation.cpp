@@ -295,8 +295,12 @@ template <int D>
 double Simulation<D>::adaptive_dt(double remaining) const {
   // Travel (v + g dt) dt <= cfl h, solved for dt.
   const double reach = scene_.time.cfl * grid_.h();
-  // Grains a spout is about to emit move too (emission.hpp).
-  const double v = std::max(max_speed(), open_spout_speed(scene_, time_));
+  // Grains a spout is about to emit move too (emission.hpp), and so do the
+  // rigid bodies' surfaces (at most |V| + |omega| r), which must not skip
+  // over the grains they meet.
+  double v = std::max(max_speed(), open_spout_speed(scene_, time_));
+  for (const Obstacle<D>& o : obstacles_)
+    if (o.dynamic) v = std::max(v, o.velocity.norm() + o.spin.norm() * o.radius);
   const double g = gravity_.norm();
   double dt = remaining;
   if (g > 0.0) {

@@ -64,8 +64,9 @@ class Simulation {
 
   // Advances by dt (s).
   StepInfo step(double dt);
-  // The adaptive step for at most `remaining` seconds: a particle travels at
-  // most time.cfl cells, accounting for one step of gravity.
+  // The adaptive step for at most `remaining` seconds: a particle (or a
+  // rigid body's surface) travels at most time.cfl cells, accounting for one
+  // step of gravity.
   double adaptive_dt(double remaining) const;
 
   double time() const { return time_; }
