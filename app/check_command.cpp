@@ -54,7 +54,8 @@ std::string point(const Vec3d& v, int d) {
   return s + ")";
 }
 
-// One line per [[obstacle]]: its shape, where it is, its friction.
+// One line per [[obstacle]]: its shape, where it is, its friction, and for a
+// rigid body its density and initial velocity.
 void print_obstacles(const SceneConfig& s) {
   const int d = s.dimension;
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
@@ -75,8 +76,12 @@ void print_obstacles(const SceneConfig& s) {
                             o.radius, o.height);
         break;
     }
-    std::printf("  obstacle[%zu] %s %s, mu %g\n", k, obstacle_shape_name(o.shape, d), where.c_str(),
-                o.mu);
+    const std::string body =
+        o.dynamic() ? fmt::format(", rigid body of density {:.6g} kg/m^3 starting at {} m/s",
+                                  o.density, point(o.velocity, d))
+                    : "";
+    std::printf("  obstacle[%zu] %s %s, mu %g%s\n", k, obstacle_shape_name(o.shape, d),
+                where.c_str(), o.mu, body.c_str());
   }
 }
 

@@ -122,7 +122,8 @@ std::vector<BodyRow> read_bodies(const fs::path& dir, const std::vector<Obstacle
   if (!any) return {};
   const fs::path path = dir / "bodies.csv";
   try {
-    return parse_bodies_until(read_file(path.string()), dimension, std::numeric_limits<long>::max());
+    return parse_bodies_until(read_file(path.string()), dimension,
+                              std::numeric_limits<long>::max());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "warning: render: %s: %s; bodies drawn where they start\n",
                  path.string().c_str(), e.what());

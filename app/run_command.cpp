@@ -46,8 +46,9 @@ void on_signal(int) { g_interrupted = 1; }
 
 // Files a run writes at the top of its folder: their presence means the
 // folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv", "obstacles.csv", "bodies.csv", "series.pvd", "grid_series.pvd",
-                                 "scene.toml", "run.json",     "checkpoint.bin"};
+const char* const kRunFiles[] = {"stats.csv",  "obstacles.csv",   "bodies.csv",
+                                 "series.pvd", "grid_series.pvd", "scene.toml",
+                                 "run.json",   "checkpoint.bin"};
 
 std::size_t count_bodies(const SceneConfig& scene) {
   std::size_t n = 0;
@@ -136,8 +137,8 @@ class Runner {
 
   // Continues after the checkpoint's frame and substep, with the stats rows
   // of the steps it covers.
-  int resume(const Checkpoint& c, std::vector<StepStats> rows,
-             std::vector<ObstacleForceRow> forces, std::vector<BodyRow> bodies) {
+  int resume(const Checkpoint& c, std::vector<StepStats> rows, std::vector<ObstacleForceRow> forces,
+             std::vector<BodyRow> bodies) {
     for (StepStats& s : rows) stats_.add(s);
     forces_ = std::move(forces);
     bodies_ = std::move(bodies);
@@ -431,14 +432,16 @@ int resume_from(const SceneConfig& scene, RunSettings set, const Checkpoint& c,
       for (int a = 0; a < (D == 2 ? 1 : 3); ++a) w[a] = b.spin[a];
       if (b.obstacle < 0 || static_cast<std::size_t>(b.obstacle) >= scene.obstacles.size() ||
           !scene.obstacles[b.obstacle].dynamic())
-        throw CheckpointError(path.string() + ": a row names an obstacle that is not a body; cannot resume");
+        throw CheckpointError(path.string() +
+                              ": a row names an obstacle that is not a body; cannot resume");
       sim.set_body_state(b.obstacle, x, v, w, b.angle);
       ++restored;
     }
     const std::size_t expected = c.steps > 0 ? count_bodies(scene) : 0;
     if (restored != expected)
-      throw CheckpointError(fmt::format("{}: holds {} body states for step {}, expected {}; cannot resume",
-                                        path.string(), restored, c.steps, expected));
+      throw CheckpointError(
+          fmt::format("{}: holds {} body states for step {}, expected {}; cannot resume",
+                      path.string(), restored, c.steps, expected));
   }
   return Runner<D>(scene, std::move(set), std::move(sim))
       .resume(c, std::move(rows), std::move(forces), std::move(bodies));

@@ -31,9 +31,9 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kTolerance = 1e-6;  // a tenth of the shipped scenes' default
 
 struct BuriedBody {
-  double mass = 0.0;        // kg (kg per metre of depth in 2D)
-  double dt = 0.0;          // s
-  std::int64_t v = 0;       // velocity index of the body's linear velocity
+  double mass = 0.0;   // kg (kg per metre of depth in 2D)
+  double dt = 0.0;     // s
+  std::int64_t v = 0;  // velocity index of the body's linear velocity
   Vec3d gravity{0, 0, 0};
 };
 
@@ -123,7 +123,8 @@ void check_body_delassus(const ConeProblem<D>& q, const BuriedBody& body) {
       }
       const Vec<D> expected = F.transpose() * (du - dpoint);
       const Vec<D> stored = W.unrotate(W.apply_rotated(W.rotate(r)));
-      ASSERT_LT((stored - expected).norm(), 1e-9 * expected.norm()) << "row " << j << " direction " << k;
+      ASSERT_LT((stored - expected).norm(), 1e-9 * expected.norm())
+          << "row " << j << " direction " << k;
     }
   }
 }
@@ -147,15 +148,16 @@ void body_held_by_bed() {
   // (push_body): m (V - V_f) = -dt sum_j Lambda_j g_jj.
   Vec<D> force = Vec<D>::Zero();
   constexpr int centre = ConeProblem<D>::NS / 2;
-  for (int j = q.first_body_row; j < q.rows(); ++j) force += from_sym<D>(q.lambda[j]) * q.coupling[j].col(centre);
+  for (int j = q.first_body_row; j < q.rows(); ++j)
+    force += from_sym<D>(q.lambda[j]) * q.coupling[j].col(centre);
   Vec<D> g_vec;
   for (int a = 0; a < D; ++a) g_vec[a] = body.gravity[a];
   const Vec<D> momentum = body.mass * (V - g_vec * body.dt);
   const Vec<D> impulse = -body.dt * force;
   std::cout << D << "D ball buried in a bed, " << contacts << " contact rows, " << rep.iterations
             << " sweeps: speed " << V.norm() << " m/s after a step of free fall " << g * body.dt
-            << " m/s; spin " << spin.norm() << " rad/s; force of the sand on the ball " << -force.transpose()
-            << " N against weight " << body.mass * g << " N\n";
+            << " m/s; spin " << spin.norm() << " rad/s; force of the sand on the ball "
+            << -force.transpose() << " N against weight " << body.mass * g << " N\n";
   EXPECT_LT((momentum - impulse).norm(), 1e-9 * body.mass * g * body.dt);
   // Statics: the bed carries the ball's weight and the ball stays put (to
   // the solver's tolerance: 1e-3 of the speed a free fall would reach).
@@ -206,10 +208,11 @@ void dropped_ball(const SceneConfig& s, double surface, double duration) {
   }
   const Obstacle<D>& b = sim.obstacles()[0];
   const double weight = m * g.norm();
-  std::cout << D << "D ball dropped on a bed: after " << duration << " s centre height " << b.a[D - 1]
-            << " m (surface " << surface << ", radius " << r << "), speed " << b.velocity.norm()
-            << " m/s, mean force of the sand over the second half " << impulse / span
-            << " N against weight " << weight << " N; momentum balance to " << worst << "\n";
+  std::cout << D << "D ball dropped on a bed: after " << duration << " s centre height "
+            << b.a[D - 1] << " m (surface " << surface << ", radius " << r << "), speed "
+            << b.velocity.norm() << " m/s, mean force of the sand over the second half "
+            << impulse / span << " N against weight " << weight << " N; momentum balance to "
+            << worst << "\n";
   EXPECT_LT(worst, 1e-9);
   EXPECT_NEAR(impulse / span, weight, 0.01 * weight);
   EXPECT_LT(b.velocity.norm(), 0.05);

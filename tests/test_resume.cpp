@@ -118,15 +118,15 @@ TEST(Resume, WithObstaclesContinuesBitForBit) {
 // bit (bodies.csv, frames and stats as the uninterrupted run's).
 TEST(Resume, WithABodyContinuesBitForBit) {
   const fs::path a = fresh("body_a"), b = fresh("body_b");
-  const std::string args = "run " + scene_file("drop2d.toml") +
-                           " --set time.frames=6 --threads 1 --quiet --out ";
+  const std::string args =
+      "run " + scene_file("drop2d.toml") + " --set time.frames=6 --threads 1 --quiet --out ";
   ASSERT_EQ(sablier(args + a.string()).code, 0);
   const Result stopped = sablier(args + b.string() + " --stop-after-frame 3");
   ASSERT_EQ(stopped.code, 130) << stopped.output;
   const Result resumed = sablier("run --resume " + b.string() + " --threads 1 --quiet");
   ASSERT_EQ(resumed.code, 0) << resumed.output;
-  for (const char* f : {"frames/particles_00004.vtp", "frames/particles_00006.vtp", "obstacles.csv",
-                        "bodies.csv"})
+  for (const char* f :
+       {"frames/particles_00004.vtp", "frames/particles_00006.vtp", "obstacles.csv", "bodies.csv"})
     EXPECT_EQ(file(a / f), file(b / f)) << f;
   expect_same_stats(a, b);
   const auto rows = parse_bodies_until(file(a / "bodies.csv"), 2, 1L << 40);

@@ -108,7 +108,8 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
         const double dist = obstacle_distance(obstacles, x, &n, &which);
         solid[r++] = solid_fraction(dist, h);
         if (dist >= h) continue;
-        (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[colour]).push_back({node, n, which});
+        (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[colour])
+            .push_back({node, n, which});
       }
     for (const auto& list : obstacle_by_colour) {
       rows += static_cast<int>(list.size());

@@ -1,10 +1,10 @@
 #include "solver/cone_problem.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <omp.h>
 
 #include <Eigen/Dense>
-#include <omp.h>
+#include <algorithm>
+#include <cmath>
 
 #include "solver/team.hpp"
 
