@@ -384,16 +384,21 @@ void assemble_delassus(ConeProblem<D>& p) {
 template <int D>
 void apply_stress_to_velocity(ConeProblem<D>& p) {
   const int ncol = static_cast<int>(p.colour_start.size()) - 1;
+  const int body_rows = std::min(p.first_body_row, p.rows());
   for (int c = 0; c < ncol; ++c) {
+    const int end = std::min(p.colour_start[c + 1], body_rows);
 #pragma omp parallel for schedule(static)
-    for (int j = p.colour_start[c]; j < p.colour_start[c + 1]; ++j) {
+    for (int j = p.colour_start[c]; j < end; ++j) {
       if (p.lambda[j].squaredNorm() > 0.0) scatter_stress<D>(p, j, p.lambda[j]);
     }
   }
-  // The bodies' reactions, in row order (rows share bodies).
-  for (int j = std::max(p.first_body_row, p.first_contact); j < p.rows(); ++j) {
+  // The bodies' rows, in order on one thread: they are not coloured (they
+  // share their bodies' velocities, and two of them may share stencil nodes).
+  for (int j = body_rows; j < p.rows(); ++j) {
+    if (!(p.lambda[j].squaredNorm() > 0.0)) continue;
+    scatter_stress<D>(p, j, p.lambda[j]);
     const int c = j - p.first_contact;
-    if (p.contact_body[c] >= 0 && p.lambda[j].squaredNorm() > 0.0)
+    if (p.contact_body[c] >= 0)
       push_body<D>(p, p.contact_body[c], p.contact_arm[c], contact_force<D>(p, j, p.lambda[j]));
   }
 }
