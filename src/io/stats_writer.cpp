@@ -29,9 +29,9 @@ std::string StatsTable::csv() const {
 
 namespace {
 
-// One data row; false (with `error` set) if it is not 16 numbers.
-bool parse_stats_row(const std::string& line, StepStats& s, std::string& error) {
-  std::vector<double> v;
+// The numbers of one CSV row; false on a malformed cell (then in `bad`).
+bool parse_numbers(const std::string& line, std::vector<double>& v, std::string* bad = nullptr) {
+  v.clear();
   std::istringstream ls(line);
   std::string cell;
   while (std::getline(ls, cell, ',')) {
@@ -40,9 +40,20 @@ bool parse_stats_row(const std::string& line, StepStats& s, std::string& error) 
       v.push_back(std::stod(cell, &used));
       if (used != cell.size()) throw std::invalid_argument(cell);
     } catch (const std::exception&) {
-      error = "stats.csv: bad number \"" + cell + "\"";
+      if (bad) *bad = cell;
       return false;
     }
+  }
+  return true;
+}
+
+// One data row; false (with `error` set) if it is not 16 numbers.
+bool parse_stats_row(const std::string& line, StepStats& s, std::string& error) {
+  std::vector<double> v;
+  std::string bad;
+  if (!parse_numbers(line, v, &bad)) {
+    error = "stats.csv: bad number \"" + bad + "\"";
+    return false;
   }
   if (v.size() != 16) {
     error = "stats.csv: expected 16 columns in \"" + line + "\"";
@@ -103,23 +114,6 @@ std::string obstacle_header(int dimension) {
 std::string bodies_header(int dimension) {
   return dimension == 2 ? "step,time,obstacle,x,y,vx,vy,omega,angle"
                         : "step,time,obstacle,x,y,z,vx,vy,vz,wx,wy,wz";
-}
-
-// The numbers of one CSV row; false on a malformed cell.
-bool parse_numbers(const std::string& line, std::vector<double>& v) {
-  v.clear();
-  std::istringstream ls(line);
-  std::string cell;
-  while (std::getline(ls, cell, ',')) {
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(cell, &used));
-      if (used != cell.size()) return false;
-    } catch (const std::exception&) {
-      return false;
-    }
-  }
-  return true;
 }
 }  // namespace
 
