@@ -83,8 +83,9 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   // colours, after the sand's.
   const double h = grid_.h();
   const int sand_rows = rows;
-  // Where the obstacles are at the start of the step (the scene only lets
-  // planes move along themselves, docs/scenes.md, so the solid is fixed).
+  // Where the obstacles are at the start of the step: a moving plane only
+  // slides along itself (its solid stays put, docs/scenes.md) and a rigid
+  // body is where the last step left it.
   const std::vector<Obstacle<D>> obstacles = obstacles_at(time_);
   struct Contact {
     std::int64_t node;
