@@ -169,15 +169,18 @@ std::int32_t spout_material_index(const SceneConfig& scene) {
 }
 
 template <int D>
-void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p) {
+void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p,
+                          const std::vector<Obstacle<D>>* bodies) {
   if (scene.spouts.empty()) return;
-  // The fixed obstacles: grains are not emitted inside them. Rigid bodies
-  // move, so they are left out; a grain emitted inside one is put back on
-  // its surface by the next advection.
+  // No grain inside a solid: the fixed obstacles as the scene places them
+  // at t1, the rigid bodies where the run has taken them.
   std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene, t1);
   obstacles.erase(std::remove_if(obstacles.begin(), obstacles.end(),
                                  [](const Obstacle<D>& o) { return o.dynamic; }),
                   obstacles.end());
+  if (bodies)
+    for (const Obstacle<D>& o : *bodies)
+      if (o.dynamic) obstacles.push_back(o);
   for (std::size_t i = 0; i < scene.spouts.size(); ++i) {
     const SpoutConfig& sp = scene.spouts[i];
     const double s = spout_spacing(scene, sp);
@@ -190,7 +193,9 @@ void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Partic
   }
 }
 
-template void emit_spout_particles<2>(const SceneConfig&, double, double, Particles<2>&);
-template void emit_spout_particles<3>(const SceneConfig&, double, double, Particles<3>&);
+template void emit_spout_particles<2>(const SceneConfig&, double, double, Particles<2>&,
+                                      const std::vector<Obstacle<2>>*);
+template void emit_spout_particles<3>(const SceneConfig&, double, double, Particles<3>&,
+                                      const std::vector<Obstacle<3>>*);
 
 }  // namespace sablier

@@ -17,8 +17,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "core/particles.hpp"
+#include "physics/obstacle.hpp"
 #include "scene/scene.hpp"
 
 namespace sablier {
@@ -52,8 +54,12 @@ std::int32_t spout_material_index(const SceneConfig& scene);
 
 // Appends the particles every spout emits between t0 and t1 (t0 < t1).
 // Points that would lie outside the box or inside an [[obstacle]] are
-// skipped (the others keep their ids).
+// skipped (the others keep their ids). The scene's rigid bodies move with
+// the run, so they are not taken from the scene: `bodies`, when given, are
+// the bodies where they are at t1 (Simulation::obstacles()), and points
+// inside them are skipped too.
 template <int D>
-void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p);
+void emit_spout_particles(const SceneConfig& scene, double t0, double t1, Particles<D>& p,
+                          const std::vector<Obstacle<D>>* bodies = nullptr);
 
 }  // namespace sablier

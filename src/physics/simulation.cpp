@@ -288,7 +288,8 @@ StepInfo Simulation<D>::step(double dt) {
 // sort (stable) puts them in place, as the constructor's does on a resume.
 template <int D>
 void Simulation<D>::emit_from_spouts(double start) {
-  if (!scene_.spouts.empty()) emit_spout_particles<D>(scene_, start, time_, particles_);
+  if (!scene_.spouts.empty())
+    emit_spout_particles<D>(scene_, start, time_, particles_, &obstacles_);
 }
 
 template <int D>
