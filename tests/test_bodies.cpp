@@ -236,5 +236,51 @@ TEST(Bodies, DroppedSphereIsCaughtByTheBed3D) {
   dropped_ball<3>(s, 0.25, 0.4);
 }
 
+// A ball launched along a rough floor (stick wall, friction mu = 0.5, the
+// ball's own) with speed v0 and no spin. Source: rigid-body mechanics. It
+// slides while friction mu m g decelerates it and spins it up, then rolls
+// without slipping at v0 / (1 + J / (m r^2)): 2/3 v0 for a disk, 5/7 v0 for
+// a sphere, from t = (v0 - v_roll) / (mu g) on. Checked: the speed after
+// the first step (deceleration mu g), the rolling speed and spin at the
+// end, and that it stays on the floor (height r). Sand: a small block in
+// a far corner, which the ball never meets.
+template <int D>
+void ball_rolls(SceneConfig s, double rolling_fraction) {
+  const double r = 0.04, v0 = 1.0, mu = 0.5, g = 9.81;
+  s.sand.resize(1);
+  s.sand[0].shape = SandShape::Box;
+  s.sand[0].min = Vec3d{0, 0, 0};
+  s.sand[0].max = D == 2 ? Vec3d{0.05, 0.05, 0} : Vec3d{0.05, 0.05, 0.05};
+  s.spouts.clear();
+  s.obstacles.clear();
+  ObstacleConfig ball;
+  ball.shape = ObstacleShape::Ball;
+  ball.center = D == 2 ? Vec3d{0.1, r, 0} : Vec3d{0.1, 0.125, r};
+  ball.radius = r;
+  ball.mu = mu;
+  ball.density = 2500.0;
+  ball.velocity = Vec3d{v0, 0, 0};
+  s.obstacles.push_back(ball);
+  Simulation<D> sim(s);
+  const double dt = 1.0 / 240;
+  sim.step(dt);
+  EXPECT_NEAR(sim.obstacles()[0].velocity[0], v0 - mu * g * dt, 1e-9) << "sliding";
+  while (sim.time() < 0.2 - 1e-12) sim.step(std::min(dt, 0.2 - sim.time()));
+  const Obstacle<D>& b = sim.obstacles()[0];
+  const double spin = D == 2 ? b.spin[0] : b.spin[1];  // about z (2D) or y (3D)
+  const double expected = rolling_fraction * v0;
+  std::cout << D << "D ball on a rough floor: speed " << b.velocity[0] << " m/s against "
+            << expected << ", spin " << spin << " rad/s, height " << b.a[D - 1] << " m\n";
+  EXPECT_NEAR(b.velocity[0], expected, 1e-6);
+  // Rolling: the contact point is still, v + omega x (-r e_up) = 0.
+  EXPECT_NEAR(D == 2 ? -spin * r : spin * r, expected, 1e-6);
+  EXPECT_NEAR(b.a[D - 1], r, 1e-9);
+}
+
+TEST(Bodies, DiskRollsAtTwoThirdsOfItsSpeed2D) { ball_rolls<2>(scene("drop2d.toml"), 2.0 / 3.0); }
+TEST(Bodies, SphereRollsAtFiveSeventhsOfItsSpeed3D) {
+  ball_rolls<3>(scene("bed3d.toml"), 5.0 / 7.0);
+}
+
 }  // namespace
 }  // namespace sablier

@@ -142,11 +142,16 @@ void Simulation<D>::build_rows(double dt) {
 #pragma omp parallel for schedule(static)
   for (int j = sand_rows; j < rows; ++j) {
     const std::int64_t node = P.node[j];
-    const double vj = grid_.node_volume(grid_.node_coords(node));
     const int o = j - sand_rows;
+    const bool wall = wall_gap_[o] >= 0.0;  // a ball against a wall (transfer.cpp)
+    const double vj = wall ? std::pow(h, D) : grid_.node_volume(grid_.node_coords(node));
     P.volume[j] = vj;
     P.k[j] = 0.0;
-    P.aperture[j] = obstacles_[obstacle_index_[o]].mu;  // Coulomb cone on the traction
+    // Coulomb cone on the traction.
+    P.aperture[j] = wall ? wall_mu_[o] : obstacles_[obstacle_index_[o]].mu;
+    // The wall "moves" towards the ball at gap / dt: the ball may close the
+    // gap within the step, not more.
+    if (wall) P.contact_velocity[o] = -(wall_gap_[o] / dt) * P.contact_frame[o].col(0);
     P.cohesion[j] = 0.0;
     P.coupling[j].setZero();
     P.coupling[j].col(centre) = (vj / h) * P.contact_frame[o].col(0);  // the normal
@@ -183,8 +188,12 @@ void Simulation<D>::attach_bodies(double dt) {
   for (int j = std::max(P.first_body_row, P.first_contact); j < P.rows(); ++j) {
     const int c = j - P.first_contact;
     const int k = obstacle_index_[c];
-    const auto n = grid_.node_coords(P.node[j]);
     P.contact_body[c] = entry[k];
+    if (wall_gap_[c] >= 0.0) {  // against a wall: the ball's point nearest it
+      P.contact_arm[c] = obstacles_[k].radius * P.contact_frame[c].col(0);
+      continue;
+    }
+    const auto n = grid_.node_coords(P.node[j]);
     for (int a = 0; a < D; ++a) P.contact_arm[c][a] = n[a] * h - obstacles_[k].a[a];
   }
 }
@@ -266,6 +275,7 @@ StepInfo Simulation<D>::step(double dt) {
   constexpr int centre = ConeProblem<D>::NS / 2;
   for (int j = obstacle_row_start_; j < problem_.rows(); ++j) {
     warm_lambda_[nodes + problem_.node[j]] = problem_.lambda[j];
+    if (wall_gap_[j - obstacle_row_start_] >= 0.0) continue;  // the wall's push, not the sand's
     const Vec<D> f = from_sym<D>(problem_.lambda[j]) * problem_.coupling[j].col(centre);
     Vec3d& total = info.obstacle_force[obstacle_index_[j - obstacle_row_start_]];
     for (int a = 0; a < D; ++a) total[a] -= f[a];

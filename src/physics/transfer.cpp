@@ -91,6 +91,8 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
     std::int64_t node;
     Vec<D> normal;
     int which;
+    double gap = -1.0;  // a body against a wall: the gap (m); else -1
+    double mu = 0.0;    // and the friction there
   };
   std::vector<std::vector<Contact>> obstacle_by_colour;
   // Rigid bodies' rows come last, in one group that the solver updates in
@@ -112,6 +114,34 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
         (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[colour])
             .push_back({node, n, which});
       }
+    // A rigid ball within a cell of one of the box's walls gets a row against
+    // it: on the ghost node just outside the wall nearest the ball, whose
+    // velocity and inverse mass are zero, so that the row sees the ball
+    // alone. Its normal points from the ball to the wall; build_rows lets
+    // the ball close the gap within the step, and gives stick walls the
+    // ball's friction and slip walls none. Free faces and openings hold
+    // nothing back.
+    const auto& cells = grid_.cells();
+    for (std::size_t k = 0; k < obstacles.size(); ++k) {
+      const Obstacle<D>& o = obstacles[k];
+      if (!o.dynamic) continue;
+      for (int a = 0; a < D; ++a)
+        for (int side = 0; side < 2; ++side) {
+          const double gap = side == 0 ? o.a[a] - o.radius : cells[a] * h - o.a[a] - o.radius;
+          if (gap >= h) continue;
+          Vec<D> n = Vec<D>::Zero();
+          n[a] = side == 0 ? -1.0 : 1.0;
+          const Vec<D> touch = o.a + o.radius * n;
+          if (leaves_through_free_face(a, side, touch)) continue;
+          std::array<int, D> ghost;
+          for (int b = 0; b < D; ++b)
+            ghost[b] = std::clamp(static_cast<int>(std::lround(o.a[b] / h)), 0, cells[b]);
+          ghost[a] = side == 0 ? -1 : cells[a] + 1;
+          const bool stick = scene_.boundary.faces[2 * a + side] == BoundaryType::Stick;
+          body_contacts.push_back({grid_.node_index(ghost), n, static_cast<int>(k),
+                                   std::max(gap, 0.0), stick ? o.mu : 0.0});
+        }
+    }
     for (const auto& list : obstacle_by_colour) {
       rows += static_cast<int>(list.size());
       P.colour_start.push_back(rows);
@@ -138,11 +168,15 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   P.contact_frame.clear();
   P.contact_velocity.clear();
   obstacle_index_.clear();
+  wall_gap_.clear();
+  wall_mu_.clear();
   for (const auto& list : obstacle_by_colour)
     for (const Contact& c : list) {
       P.node[r] = c.node;
       P.coupling[r].setZero();
       obstacle_index_.push_back(c.which);
+      wall_gap_.push_back(c.gap);
+      wall_mu_.push_back(c.mu);
       P.contact_frame.push_back(contact_frame<D>(c.normal));
       // A body's own motion enters through its velocity unknowns instead.
       P.contact_velocity.push_back(obstacles[c.which].dynamic ? Vec<D>::Zero()
