@@ -15,6 +15,7 @@
 #include <iostream>
 #include <vector>
 
+#include "physics/emission.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
 #include "test_support.hpp"
@@ -280,6 +281,36 @@ void ball_rolls(SceneConfig s, double rolling_fraction) {
 TEST(Bodies, DiskRollsAtTwoThirdsOfItsSpeed2D) { ball_rolls<2>(scene("drop2d.toml"), 2.0 / 3.0); }
 TEST(Bodies, SphereRollsAtFiveSeventhsOfItsSpeed3D) {
   ball_rolls<3>(scene("bed3d.toml"), 5.0 / 7.0);
+}
+
+// A spout pouring onto a rigid disk (scenes/drop2d.toml's): the body is
+// where the run has taken it, not where the scene put it, so the grains
+// that would appear inside the body as given are not emitted (the others
+// keep their ids), and the scene's own starting position blocks nothing.
+TEST(Bodies, SpoutsSeeBodiesWhereTheRunTookThem) {
+  SceneConfig s = scene("drop2d.toml");
+  SpoutConfig spout;
+  spout.center = Vec3d{0.25, 0.35, 0};
+  spout.radius = 0.05;
+  spout.velocity = Vec3d{0, -0.5, 0};
+  spout.jitter = 0.5;
+  s.spouts = {spout};
+  SceneConfig bare = s;
+  bare.obstacles.clear();
+  std::vector<Obstacle<2>> bodies = make_obstacles<2>(s);
+  ASSERT_TRUE(bodies[0].dynamic);
+  const Vec<2> moved_to(0.25, 0.18);
+  bodies[0].a = moved_to;
+  Particles<2> all, moved, unmoved;
+  emit_spout_particles<2>(bare, 0.0, 0.4, all);
+  emit_spout_particles<2>(s, 0.0, 0.4, moved, &bodies);
+  emit_spout_particles<2>(s, 0.0, 0.4, unmoved);  // no bodies given
+  std::vector<std::int64_t> ids;
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if ((all.position[k] - moved_to).norm() >= bodies[0].radius) ids.push_back(all.id[k]);
+  EXPECT_LT(ids.size(), all.size());
+  EXPECT_EQ(moved.id, ids);
+  EXPECT_EQ(unmoved.id, all.id);
 }
 
 }  // namespace

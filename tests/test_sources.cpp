@@ -474,32 +474,6 @@ TEST(Sources, SpoutsEmitNothingInsideObstacles) {
   EXPECT_EQ(some.id, ids);
 }
 
-// A rigid body is where the run has taken it, not where the scene put it:
-// the grains that would appear inside the body as given are not emitted,
-// and the scene's own (starting) position of the body blocks nothing.
-TEST(Sources, SpoutsSeeRigidBodiesWhereTheRunTookThem) {
-  const std::string text = kBox2D +
-                           "[[spout]]\ncenter = [0.25, 0.35]\nradius = 0.05\n"
-                           "velocity = [0.0, -0.5]\njitter = 0.5\n";
-  const SceneConfig s = parse_scene(
-      text +
-          "[[obstacle]]\nshape = \"disk\"\ncenter = [0.25, 0.25]\nradius = 0.03\ndensity = 2500\n",
-      "body.toml");
-  std::vector<Obstacle<2>> bodies = make_obstacles<2>(s);
-  ASSERT_TRUE(bodies[0].dynamic);
-  bodies[0].a = Vec<2>(0.25, 0.18);  // it has fallen 7 cm
-  Particles<2> all, moved, unmoved;
-  emit_spout_particles<2>(parse_scene(text, "spout.toml"), 0.0, 0.4, all);
-  emit_spout_particles<2>(s, 0.0, 0.4, moved, &bodies);
-  emit_spout_particles<2>(s, 0.0, 0.4, unmoved);  // no bodies given
-  std::vector<std::int64_t> ids;
-  for (std::size_t k = 0; k < all.size(); ++k)
-    if ((all.position[k] - Vec<2>(0.25, 0.18)).norm() >= 0.03) ids.push_back(all.id[k]);
-  EXPECT_LT(ids.size(), all.size());
-  EXPECT_EQ(moved.id, ids);
-  EXPECT_EQ(unmoved.id, all.id);
-}
-
 // -------------------------------------------------------------------- spouts
 
 // 2D, closed box: after t the grain mass is rho phi_max |v| A t (here the
