@@ -24,6 +24,7 @@ class ByteWriter {
       data_ += static_cast<char>(static_cast<unsigned char>(bits >> (8 * i)));
   }
   void put_bytes(const std::string& s) { data_ += s; }
+  void reserve(std::size_t bytes) { data_.reserve(bytes); }
   std::string& data() { return data_; }
 
  private:

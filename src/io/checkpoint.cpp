@@ -52,6 +52,8 @@ std::uint64_t expected_size(const Checkpoint& c, std::uint64_t available) {
 
 std::string encode_checkpoint(const Checkpoint& c, const std::string& target) {
   ByteWriter w;
+  constexpr std::uint64_t kUnbounded = std::numeric_limits<std::uint64_t>::max();
+  if (const std::uint64_t size = expected_size(c, kUnbounded); size != kUnbounded) w.reserve(size);
   w.put_bytes(std::string(kMagic, kMagicSize));
   w.put<std::uint32_t>(Checkpoint::kFormatVersion);
   w.put<std::uint32_t>(c.dimension);
