@@ -100,11 +100,14 @@ struct LocalDelassus {
 namespace detail {
 
 // x(beta) of (W + beta P_T) x = -b in rotated coordinates, its derivative
-// in beta, and the slide function f(beta) = |z| - aperture x_N with its
-// derivative.
+// in beta, and a slide function f(beta) with its derivative and the size
+// |f| below which beta counts as its root. Where x_N > 0, f = |z|^2 -
+// (aperture x_N)^2, which has the sign and the root of |z| - aperture x_N
+// and needs no square root; elsewhere (x_N <= 0, where the slide cannot
+// hold) f = |z| - aperture x_N, which is positive there.
 template <int S>
 struct SlideEval {
-  double beta, xn, dxn, f, df;
+  double beta, xn, dxn, f, df, tol;
   Eigen::Matrix<double, S - 1, 1> z, dz;
 };
 
@@ -113,10 +116,27 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
                                const Eigen::Matrix<double, S - 1, 1>& d, double aperture,
                                double beta) {
   using VecT = Eigen::Matrix<double, S - 1, 1>;
-  const VecT r = (W.ev.array() + beta).inverse();
+  VecT r;
+  double inv_den;
+  if constexpr (S == 3) {
+    // 2D: r_k = 1 / (ev_k + beta) and 1 / (w_nn - c . (c r)) from one
+    // division: with e_k = ev_k + beta, p = e_0 e_1 and the denominator
+    // times p, den_p = w_nn p - c_0^2 e_1 - c_1^2 e_0, q = 1 / (p den_p)
+    // gives 1 / p = den_p q and 1 / den = p / den_p = p^2 q.
+    const double e0 = W.ev[0] + beta, e1 = W.ev[1] + beta;
+    const double p = e0 * e1;
+    const double den_p = W.w_nn * p - W.c[0] * W.c[0] * e1 - W.c[1] * W.c[1] * e0;
+    const double q = 1.0 / (p * den_p);
+    const double inv_p = den_p * q;
+    r[0] = e1 * inv_p;
+    r[1] = e0 * inv_p;
+    inv_den = p * p * q;
+  } else {
+    r = (W.ev.array() + beta).inverse();
+    inv_den = 1.0 / (W.w_nn - W.c.cwiseProduct(r).dot(W.c));
+  }
   const VecT cr = W.c.cwiseProduct(r);
   const double num = -bn + cr.dot(d);
-  const double inv_den = 1.0 / (W.w_nn - cr.dot(W.c));
   SlideEval<S> e;
   e.beta = beta;
   e.xn = num * inv_den;
@@ -127,9 +147,18 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
   const double dden = crr.dot(W.c);
   e.dxn = (dnum - e.xn * dden) * inv_den;
   e.dz = -cr * e.dxn + dc.cwiseProduct(r.cwiseProduct(r));
-  const double zn = e.z.norm();
-  e.f = zn - aperture * e.xn;
-  e.df = (zn > 0.0 ? e.z.dot(e.dz) / zn : 0.0) - aperture * e.dxn;
+  const double zz = e.z.squaredNorm();
+  if (e.xn > 0.0) {
+    const double ax = aperture * e.xn;
+    e.f = zz - ax * ax;
+    e.df = 2.0 * (e.z.dot(e.dz) - aperture * ax * e.dxn);
+    e.tol = 1e-15 * (zz + ax * ax);
+  } else {
+    const double zn = std::sqrt(zz);
+    e.f = zn - aperture * e.xn;
+    e.df = (zn > 0.0 ? e.z.dot(e.dz) / zn : 0.0) - aperture * e.dxn;
+    e.tol = 1e-15 * (zn + aperture * std::abs(e.xn));
+  }
   return e;
 }
 
@@ -181,8 +210,7 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
   detail::SlideEval<S> e;
   for (int it = 0; it < 200; ++it) {
     e = detail::eval_slide<S>(W, b[0], d, aperture, beta);
-    const double scale = e.z.norm() + aperture * std::abs(e.xn);
-    if (std::abs(e.f) <= 1e-15 * scale) break;
+    if (std::abs(e.f) <= e.tol) break;
     if (e.f > 0.0) {
       lo = beta;
     } else {
