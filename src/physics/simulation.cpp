@@ -149,9 +149,6 @@ void Simulation<D>::build_rows(double dt) {
     P.k[j] = 0.0;
     // Coulomb cone on the traction.
     P.aperture[j] = wall ? wall_mu_[o] : obstacles_[obstacle_index_[o]].mu;
-    // The wall "moves" towards the ball at gap / dt: the ball may close the
-    // gap within the step, not more.
-    if (wall) P.contact_velocity[o] = -(wall_gap_[o] / dt) * P.contact_frame[o].col(0);
     P.cohesion[j] = 0.0;
     P.coupling[j].setZero();
     P.coupling[j].col(centre) = (vj / h) * P.contact_frame[o].col(0);  // the normal
@@ -184,13 +181,20 @@ void Simulation<D>::attach_bodies(double dt) {
   const int contacts = P.rows() - P.first_contact;
   P.contact_body.assign(std::max(contacts, 0), -1);
   P.contact_arm.assign(std::max(contacts, 0), Vec<D>::Zero());
+  P.contact_other_body.assign(std::max(contacts, 0), -1);
+  P.contact_other_arm.assign(std::max(contacts, 0), Vec<D>::Zero());
   const double h = grid_.h();
   for (int j = std::max(P.first_body_row, P.first_contact); j < P.rows(); ++j) {
     const int c = j - P.first_contact;
     const int k = obstacle_index_[c];
     P.contact_body[c] = entry[k];
-    if (wall_gap_[c] >= 0.0) {  // against a wall: the ball's point nearest it
-      P.contact_arm[c] = obstacles_[k].radius * P.contact_frame[c].col(0);
+    if (wall_gap_[c] >= 0.0) {  // against a solid: the ball's point nearest it
+      const Vec<D> n = P.contact_frame[c].col(0);
+      P.contact_arm[c] = obstacles_[k].radius * n;
+      if (const int m = contact_other_[c]; m >= 0) {  // another ball: its nearest point
+        P.contact_other_body[c] = entry[m];
+        P.contact_other_arm[c] = -obstacles_[m].radius * n;
+      }
       continue;
     }
     const auto n = grid_.node_coords(P.node[j]);

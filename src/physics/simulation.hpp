@@ -175,9 +175,11 @@ class Simulation {
   std::vector<Obstacle<D>> obstacles_;
   int obstacle_row_start_ = 0;
   std::vector<int> obstacle_index_;      // per obstacle row: which [[obstacle]]
-  // Per obstacle row: a rigid ball against a wall (gap >= 0, m, and the
-  // friction there), or a row with the sand (gap -1).
+  // Per obstacle row: a rigid ball against a wall, an obstacle or another
+  // ball (gap >= 0, m, and the friction there; contact_other_ the other
+  // ball's [[obstacle]] index, else -1), or a row with the sand (gap -1).
   std::vector<double> wall_gap_, wall_mu_;
+  std::vector<int> contact_other_;
   std::vector<double> row_solid_;        // per sand row: solid fraction of V_j
 
   ConeProblem<D> problem_;

@@ -45,7 +45,7 @@ void Simulation<D>::sort_particles() {
 }
 
 template <int D>
-void Simulation<D>::transfer_to_grid(double /*dt*/) {
+void Simulation<D>::transfer_to_grid(double dt) {
   constexpr int NC = ipow(2, D);
   std::fill(node_grain_volume_.begin(), node_grain_volume_.end(), 0.0);
   std::fill(node_mass_.begin(), node_mass_.end(), 0.0);
@@ -91,8 +91,10 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
     std::int64_t node;
     Vec<D> normal;
     int which;
-    double gap = -1.0;  // a body against a wall: the gap (m); else -1
+    double gap = -1.0;  // a body against a solid: the gap (m); else -1
     double mu = 0.0;    // and the friction there
+    int other = -1;     // the solid, when it is another body
+    Vec<D> surface_velocity = Vec<D>::Zero();  // the solid's, when it is a moving obstacle
   };
   std::vector<std::vector<Contact>> obstacle_by_colour;
   // Rigid bodies' rows come last, in one group that the solver updates in
@@ -141,6 +143,37 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
           body_contacts.push_back({grid_.node_index(ghost), n, static_cast<int>(k),
                                    std::max(gap, 0.0), stick ? o.mu : 0.0});
         }
+      // Against the other obstacles and the other balls (each pair once), in
+      // the same way: the normal from the ball's centre to the other solid's
+      // nearest point, the smaller friction of the two, and the solid's
+      // motion (a moving plane drags the ball along, as it does the sand).
+      // The row's node is a ghost node beyond the xmin face (zero velocity
+      // and inverse mass, like the walls'), one per pair so that each keeps
+      // its own warm start.
+      for (std::size_t m = 0; m < obstacles.size(); ++m) {
+        const Obstacle<D>& q = obstacles[m];
+        if (m == k || (q.dynamic && m < k)) continue;
+        Vec<D> out;  // from the other solid towards the ball's centre
+        double gap;
+        if (q.dynamic) {
+          const Vec<D> d = o.a - q.a;
+          const double len = d.norm();
+          out = len > 0.0 ? Vec<D>(d / len) : Vec<D>::Unit(D - 1);
+          gap = len - o.radius - q.radius;
+        } else {
+          gap = signed_distance(q, o.a, &out) - o.radius;
+        }
+        if (gap >= h) continue;
+        const std::int64_t pair = static_cast<std::int64_t>(k * obstacles.size() + m);
+        std::array<int, D> ghost{};
+        ghost[0] = -1;
+        ghost[1] = static_cast<int>(pair % (cells[1] + 1));
+        if constexpr (D == 3) ghost[2] = static_cast<int>((pair / (cells[1] + 1)) % (cells[2] + 1));
+        body_contacts.push_back({grid_.node_index(ghost), -out, static_cast<int>(k),
+                                 std::max(gap, 0.0), std::min(o.mu, q.mu),
+                                 q.dynamic ? static_cast<int>(m) : -1,
+                                 q.dynamic ? Vec<D>::Zero() : q.velocity});
+      }
     }
     for (const auto& list : obstacle_by_colour) {
       rows += static_cast<int>(list.size());
@@ -170,6 +203,7 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
   obstacle_index_.clear();
   wall_gap_.clear();
   wall_mu_.clear();
+  contact_other_.clear();
   for (const auto& list : obstacle_by_colour)
     for (const Contact& c : list) {
       P.node[r] = c.node;
@@ -177,10 +211,14 @@ void Simulation<D>::transfer_to_grid(double /*dt*/) {
       obstacle_index_.push_back(c.which);
       wall_gap_.push_back(c.gap);
       wall_mu_.push_back(c.mu);
+      contact_other_.push_back(c.other);
       P.contact_frame.push_back(contact_frame<D>(c.normal));
       // A body's own motion enters through its velocity unknowns instead.
-      P.contact_velocity.push_back(obstacles[c.which].dynamic ? Vec<D>::Zero()
-                                                              : obstacles[c.which].velocity);
+      // Against a solid, the solid's surface "moves" towards the ball at
+      // gap / dt: the ball may close the gap within the step, not more.
+      P.contact_velocity.push_back(c.gap >= 0.0 ? Vec<D>(c.surface_velocity - (c.gap / dt) * c.normal)
+                                   : obstacles[c.which].dynamic ? Vec<D>::Zero()
+                                                                : obstacles[c.which].velocity);
       ++r;
     }
   row_solid_ = std::move(solid);

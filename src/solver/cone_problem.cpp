@@ -95,8 +95,10 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Vec<D> r_old = F.transpose() * (from_sym<D>(p.lambda[j]) * n);
   const Vec<D> x_old = W.rotate(r_old);
   const std::int64_t body = j >= p.first_body_row ? p.contact_body[c] : -1;
+  const std::int64_t other = j >= p.first_body_row ? p.other_body(c) : -1;
   Vec<D> relative = p.velocity[p.node[j]] - p.contact_velocity[c];
   if (body >= 0) relative -= body_point_velocity<D>(p, body, p.contact_arm[c]);
+  if (other >= 0) relative += body_point_velocity<D>(p, other, p.contact_other_arm[c]);
   const Vec<D> b = W.rotate(F.transpose() * relative) - W.apply_rotated(x_old);
   Vec<D> x;
   p.state[j] = solve_drucker_prager_rotated<D>(W, b, p.aperture[j], x, p.beta[j]);
@@ -106,7 +108,11 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Mat<D> dL = dr[0] * Mat<D>::Identity() + t * n.transpose() + n * t.transpose();
   const SymVec<D> dl = to_sym<D>(dL);
   scatter_stress<D>(p, j, dl);
-  if (body >= 0) push_body<D>(p, body, p.contact_arm[c], contact_force<D>(p, j, dl));
+  if (body >= 0 || other >= 0) {
+    const Vec<D> f = contact_force<D>(p, j, dl);
+    if (body >= 0) push_body<D>(p, body, p.contact_arm[c], f);
+    if (other >= 0) push_body<D>(p, other, p.contact_other_arm[c], -f);
+  }
   p.lambda[j] += dl;
 }
 
@@ -363,9 +369,7 @@ void assemble_delassus(ConeProblem<D>& p) {
     // the node's inverse mass, plus the body's (cone_problem.hpp, push_body):
     // M_b^{-1} + [a]x^T J^{-1} [a]x in 3D, M_b^{-1} + a_perp a_perp^T / J in 2D.
     Mat<D> Wc = w * F.transpose() * p.inv_mass[p.node[j]].asDiagonal() * F;
-    if (j >= p.first_body_row && p.contact_body[j - first] >= 0) {
-      const std::int64_t v = p.contact_body[j - first];
-      const Vec<D>& a = p.contact_arm[j - first];
+    const auto add_body = [&](std::int64_t v, const Vec<D>& a) {
       Mat<D> K = p.inv_mass[v].asDiagonal();
       if constexpr (D == 2) {
         const Vec<D> perp(-a[1], a[0]);
@@ -376,6 +380,11 @@ void assemble_delassus(ConeProblem<D>& p) {
         K += A.transpose() * p.inv_mass[v + 1].asDiagonal() * A;
       }
       Wc += w * F.transpose() * K * F;
+    };
+    if (j >= p.first_body_row) {
+      const int c = j - first;
+      if (p.contact_body[c] >= 0) add_body(p.contact_body[c], p.contact_arm[c]);
+      if (p.other_body(c) >= 0) add_body(p.other_body(c), p.contact_other_arm[c]);
     }
     p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
   }
@@ -398,8 +407,9 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
     if (!(p.lambda[j].squaredNorm() > 0.0)) continue;
     scatter_stress<D>(p, j, p.lambda[j]);
     const int c = j - p.first_contact;
-    if (p.contact_body[c] >= 0)
-      push_body<D>(p, p.contact_body[c], p.contact_arm[c], contact_force<D>(p, j, p.lambda[j]));
+    const Vec<D> f = contact_force<D>(p, j, p.lambda[j]);
+    if (p.contact_body[c] >= 0) push_body<D>(p, p.contact_body[c], p.contact_arm[c], f);
+    if (p.other_body(c) >= 0) push_body<D>(p, p.other_body(c), p.contact_other_arm[c], -f);
   }
 }
 

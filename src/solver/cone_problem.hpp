@@ -95,9 +95,22 @@ struct ConeProblem {
   // share a body are not independent, so the solver updates these rows one
   // after the other, in order, on one thread (results stay independent of
   // the thread count); they must come last.
+  // A row may pair its body with a second one instead of a sand node (two
+  // balls touching): contact_other_body gives that body's index (or -1; an
+  // empty vector means none anywhere) and contact_other_arm its lever arm.
+  // The row's node is then one with zero velocity and inverse mass, and its
+  // relative velocity u_node + (V' + omega' x arm') - (V + omega x arm); the
+  // second body takes the force the row puts on the node.
   int first_body_row = std::numeric_limits<int>::max();  // none unless set
   std::vector<std::int64_t> contact_body;  // per contact row: the body's velocity index, or -1
   std::vector<Vec<D>> contact_arm;         // per contact row: node position - body centre, m
+  std::vector<std::int64_t> contact_other_body;  // per contact row: a second body, or -1
+  std::vector<Vec<D>> contact_other_arm;         // per contact row: its lever arm, m
+
+  // The second body of contact row c (index past first_contact), or -1.
+  std::int64_t other_body(int c) const {
+    return contact_other_body.empty() ? -1 : contact_other_body[c];
+  }
 
   int rows() const { return static_cast<int>(node.size()); }
   void resize_rows(int n);
