@@ -9,6 +9,8 @@
 #include <limits>
 #include <utility>
 
+#include "physics/obstacle.hpp"
+
 namespace sablier {
 namespace {
 
@@ -156,6 +158,48 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o, 
   }
 }
 
+// How far a rigid ball `b` reaches into the solid `o` (m; <= 0 when clear
+// of it or touching it).
+template <int D>
+double overlap(const ObstacleConfig& b, const ObstacleConfig& o) {
+  const Obstacle<D> ball = make_obstacle<D>(b), other = make_obstacle<D>(o);
+  Vec<D> n;
+  return ball.radius - signed_distance(other, ball.a, &n);
+}
+
+// A rigid body must start inside the box and clear of every solid read
+// before it, and a solid read after a body clear of that body: the contact
+// rows stop solids from moving into each other, not pull them apart
+// (docs/method.md, "Frictional obstacles").
+void check_bodies_clear(TableReader& t, const ObstacleConfig& o, const SceneConfig& s) {
+  const int d = s.dimension;
+  if (o.dynamic())
+    for (int a = 0; a < d; ++a) {
+      const double lo = o.center[a] - o.radius, hi = o.center[a] + o.radius;
+      const double eps = 1e-12 * s.size[a];
+      if (lo >= -eps && hi <= s.size[a] + eps) continue;
+      t.fail_at(t.node("center"), "center",
+                fmt::format("the rigid body spans [{}, {}] on {}, not inside the box [0, {}] "
+                            "(grid.size); allowed: a body that starts inside the box",
+                            lo, hi, axis_name(a), s.size[a]));
+    }
+  for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
+    const ObstacleConfig& p = s.obstacles[k];
+    if (!o.dynamic() && !p.dynamic()) continue;
+    const ObstacleConfig& body = o.dynamic() ? o : p;
+    const ObstacleConfig& other = o.dynamic() ? p : o;
+    const double depth = d == 2 ? overlap<2>(body, other) : overlap<3>(body, other);
+    if (depth <= 1e-9 * length(s.size)) continue;
+    const std::string key = o.shape == ObstacleShape::Plane ? "point"
+                            : o.shape == ObstacleShape::Box ? "min"
+                                                            : "center";
+    t.fail_at(t.node(key), key,
+              fmt::format("overlaps obstacle[{}] (a {}{}) by {} m at the start; allowed: rigid "
+                          "bodies clear of the other obstacles and bodies (touching is clear)",
+                          k, p.dynamic() ? "rigid " : "", obstacle_shape_name(p.shape, d), depth));
+  }
+}
+
 ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   const int d = s.dimension;
   const std::string shape =
@@ -180,6 +224,7 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   } else {
     check_bounds_reach_box(t, o, s);
   }
+  check_bodies_clear(t, o, s);
   return o;
 }
 
