@@ -149,7 +149,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
       // motion (a moving plane drags the ball along, as it does the sand).
       // The row's node is a ghost node beyond the xmin face (zero velocity
       // and inverse mass, like the walls'), one per pair so that each keeps
-      // its own warm start.
+      // its own warm start (pairs past the face's node count share one; only
+      // their warm starts mix).
       for (std::size_t m = 0; m < obstacles.size(); ++m) {
         const Obstacle<D>& q = obstacles[m];
         if (m == k || (q.dynamic && m < k)) continue;
