@@ -116,6 +116,44 @@ TEST(BodyContacts, DiskSlidesDownAFrictionlessRamp2D) {
   ball_on_ramp<2>(scene("drop2d.toml"), 0.0, 1.0);
 }
 
+// A ball at rest on a horizontal conveyor-belt plane (an obstacle moving
+// along itself at v_b = 1 m/s, friction 0.5). Friction drags it and spins
+// it up until its contact point moves with the belt, V + omega x (-r n) =
+// v_b; from then on it rolls at v_b J / (J + m r^2): v_b / 3 for a disk
+// (after v_b / (3 mu g) = 0.068 s) and 2 v_b / 7 for a sphere. Checked at
+// 0.2 s, to 1e-6.
+template <int D>
+void ball_on_belt(SceneConfig base, double expected_fraction) {
+  const double r = 0.04, vb = 1.0, dt = 1.0 / 240;
+  SceneConfig s = bare_scene<D>(base, D == 2 ? vec3(0.44, 0.34) : vec3(0.44, 0.0, 0.29));
+  ObstacleConfig belt;
+  belt.shape = ObstacleShape::Plane;
+  belt.point = D == 2 ? vec3(0.0, 0.05) : vec3(0.0, 0.0, 0.05);
+  belt.normal = D == 2 ? vec3(0.0, 1.0) : vec3(0.0, 0.0, 1.0);
+  belt.velocity = vec3(vb, 0.0);
+  belt.mu = 0.5;
+  s.obstacles.push_back(belt);
+  s.obstacles.push_back(
+      ball_config(D == 2 ? vec3(0.1, 0.05 + r) : vec3(0.1, 0.125, 0.05 + r), r, 0.5, 2500.0));
+  Simulation<D> sim(s);
+  while (sim.time() < 0.2 - 1e-12) sim.step(dt);
+  const Obstacle<D>& b = sim.obstacles()[1];
+  // Spin about z (2D) or y (3D); the contact point's velocity is
+  // V + omega x (-r n): V_x - omega r in 2D, V_x + omega_y r in 3D.
+  const double surface = D == 2 ? -b.spin[0] * r : b.spin[1] * r;
+  std::cout << D << "D ball on a belt at " << vb << " m/s: speed " << b.velocity[0]
+            << " m/s against " << expected_fraction * vb << ", contact point "
+            << b.velocity[0] - surface << " m/s\n";
+  EXPECT_NEAR(b.velocity[0], expected_fraction * vb, 1e-6);
+  EXPECT_NEAR(b.velocity[0] - surface, vb, 1e-6);
+  EXPECT_NEAR(b.a[D - 1], 0.05 + r, 1e-9);
+}
+
+TEST(BodyContacts, DiskOnABeltRollsAtAThirdOfItsSpeed2D) { ball_on_belt<2>(scene("drop2d.toml"), 1.0 / 3.0); }
+TEST(BodyContacts, SphereOnABeltRollsAtTwoSeventhsOfItsSpeed3D) {
+  ball_on_belt<3>(scene("bed3d.toml"), 2.0 / 7.0);
+}
+
 // Two balls on a slip floor (frictionless), the first launched at v0 = 1
 // m/s straight at the second, at rest 1 cm away. The contact has no
 // restitution, so the collision is perfectly inelastic: momentum is

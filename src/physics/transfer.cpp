@@ -215,11 +215,15 @@ void Simulation<D>::transfer_to_grid(double dt) {
       contact_other_.push_back(c.other);
       P.contact_frame.push_back(contact_frame<D>(c.normal));
       // A body's own motion enters through its velocity unknowns instead.
-      // Against a solid, the solid's surface "moves" towards the ball at
-      // gap / dt: the ball may close the gap within the step, not more.
-      P.contact_velocity.push_back(c.gap >= 0.0 ? Vec<D>(c.surface_velocity - (c.gap / dt) * c.normal)
-                                   : obstacles[c.which].dynamic ? Vec<D>::Zero()
-                                                                : obstacles[c.which].velocity);
+      // Against a solid the roles swap: the row's node stands for the solid
+      // and the body for the obstacle, so the node's side moves at
+      // -contact_velocity. The solid is given its surface velocity plus
+      // gap / dt along n, away from the ball: the ball may close the gap
+      // within the step, not pass it.
+      P.contact_velocity.push_back(
+          c.gap >= 0.0 ? Vec<D>(-c.surface_velocity - (c.gap / dt) * c.normal)
+          : obstacles[c.which].dynamic ? Vec<D>::Zero()
+                                       : obstacles[c.which].velocity);
       ++r;
     }
   row_solid_ = std::move(solid);
