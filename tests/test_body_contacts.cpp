@@ -72,14 +72,15 @@ void ball_on_ramp(SceneConfig base, double plane_mu, double expected_fraction) {
   ObstacleConfig plane;
   plane.shape = ObstacleShape::Plane;
   plane.point = D == 2 ? vec3(0.0, 0.25) : vec3(0.0, 0.0, 0.25);
-  plane.normal = D == 2 ? vec3(std::sin(theta), std::cos(theta))
-                        : vec3(std::sin(theta), 0.0, std::cos(theta));
+  plane.normal =
+      D == 2 ? vec3(std::sin(theta), std::cos(theta)) : vec3(std::sin(theta), 0.0, std::cos(theta));
   plane.mu = plane_mu;
   s.obstacles.push_back(plane);
   // Tangent to the plane above its point at x = 0.1.
   const double x0 = 0.1, surface = 0.25 - x0 * std::tan(theta);
-  const Vec3d centre = D == 2 ? vec3(x0 + r * std::sin(theta), surface + r * std::cos(theta))
-                              : vec3(x0 + r * std::sin(theta), 0.125, surface + r * std::cos(theta));
+  const Vec3d centre = D == 2
+                           ? vec3(x0 + r * std::sin(theta), surface + r * std::cos(theta))
+                           : vec3(x0 + r * std::sin(theta), 0.125, surface + r * std::cos(theta));
   s.obstacles.push_back(ball_config(centre, r, 0.5, 2500.0));
   Simulation<D> sim(s);
   while (sim.time() < T - 1e-12) sim.step(std::min(dt, T - sim.time()));
@@ -149,7 +150,9 @@ void ball_on_belt(SceneConfig base, double expected_fraction) {
   EXPECT_NEAR(b.a[D - 1], 0.05 + r, 1e-9);
 }
 
-TEST(BodyContacts, DiskOnABeltRollsAtAThirdOfItsSpeed2D) { ball_on_belt<2>(scene("drop2d.toml"), 1.0 / 3.0); }
+TEST(BodyContacts, DiskOnABeltRollsAtAThirdOfItsSpeed2D) {
+  ball_on_belt<2>(scene("drop2d.toml"), 1.0 / 3.0);
+}
 TEST(BodyContacts, SphereOnABeltRollsAtTwoSeventhsOfItsSpeed3D) {
   ball_on_belt<3>(scene("bed3d.toml"), 2.0 / 7.0);
 }
@@ -167,11 +170,10 @@ void balls_collide(SceneConfig base, double density2) {
   SceneConfig s = bare_scene<D>(base, D == 2 ? vec3(0.44, 0.34) : vec3(0.44, 0.0, 0.29));
   s.boundary.faces[2 * (D - 1)] = BoundaryType::Slip;  // the floor
   const double y = 0.125;
-  s.obstacles.push_back(ball_config(D == 2 ? vec3(0.1, r) : vec3(0.1, y, r), r, 0.5, 2500.0,
-                                    vec3(v0, 0.0)));
-  s.obstacles.push_back(ball_config(D == 2 ? vec3(0.1 + 2 * r + 0.01, r)
-                                           : vec3(0.1 + 2 * r + 0.01, y, r),
-                                    r, 0.5, density2));
+  s.obstacles.push_back(
+      ball_config(D == 2 ? vec3(0.1, r) : vec3(0.1, y, r), r, 0.5, 2500.0, vec3(v0, 0.0)));
+  s.obstacles.push_back(ball_config(
+      D == 2 ? vec3(0.1 + 2 * r + 0.01, r) : vec3(0.1 + 2 * r + 0.01, y, r), r, 0.5, density2));
   // A fixed box the pair runs into, its face at x = 0.35.
   ObstacleConfig box;
   box.shape = ObstacleShape::Box;
@@ -215,7 +217,9 @@ void balls_collide(SceneConfig base, double density2) {
   EXPECT_NEAR(b.a[0] - a.a[0], 2 * r, 0.5 * still);
 }
 
-TEST(BodyContacts, EqualDisksCollideInelastically2D) { balls_collide<2>(scene("drop2d.toml"), 2500.0); }
+TEST(BodyContacts, EqualDisksCollideInelastically2D) {
+  balls_collide<2>(scene("drop2d.toml"), 2500.0);
+}
 TEST(BodyContacts, UnequalSpheresCollideInelastically3D) {
   balls_collide<3>(scene("bed3d.toml"), 7500.0);
 }

@@ -294,7 +294,8 @@ TEST(SceneFile, RandomDoublesRoundTripExactly) {
         ObstacleConfig& o = x->obstacles[k];
         o.mu = kMaxObstacleMu * unit(rng);
         if (o.shape == ObstacleShape::Plane) o.point[1] = 0.1 * unit(rng);  // clear of the sand
-        if (o.shape == ObstacleShape::Ball) o.radius = base.obstacles[k].radius * (1.0 + 0.1 * unit(rng));
+        if (o.shape == ObstacleShape::Ball)
+          o.radius = base.obstacles[k].radius * (1.0 + 0.1 * unit(rng));
       }
       expect_same(*x, parse_scene(scene_to_toml(*x), "r.toml"));
     }

@@ -220,10 +220,10 @@ void Simulation<D>::transfer_to_grid(double dt) {
       // -contact_velocity. The solid is given its surface velocity plus
       // gap / dt along n, away from the ball: the ball may close the gap
       // within the step, not pass it.
-      P.contact_velocity.push_back(
-          c.gap >= 0.0 ? Vec<D>(-c.surface_velocity - (c.gap / dt) * c.normal)
-          : obstacles[c.which].dynamic ? Vec<D>::Zero()
-                                       : obstacles[c.which].velocity);
+      P.contact_velocity.push_back(c.gap >= 0.0
+                                       ? Vec<D>(-c.surface_velocity - (c.gap / dt) * c.normal)
+                                   : obstacles[c.which].dynamic ? Vec<D>::Zero()
+                                                                : obstacles[c.which].velocity);
       ++r;
     }
   row_solid_ = std::move(solid);
