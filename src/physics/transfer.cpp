@@ -119,10 +119,10 @@ void Simulation<D>::transfer_to_grid(double dt) {
     // A rigid ball within a cell of one of the box's walls gets a row against
     // it: on the ghost node just outside the wall nearest the ball, whose
     // velocity and inverse mass are zero, so that the row sees the ball
-    // alone. Its normal points from the ball to the wall; build_rows lets
-    // the ball close the gap within the step, and gives stick walls the
-    // ball's friction and slip walls none. Free faces and openings hold
-    // nothing back.
+    // alone. Its normal points from the ball to the wall; the row lets the
+    // ball close the gap within the step (contact_velocity, below), and
+    // stick walls get the ball's friction, slip walls none. Free faces and
+    // openings hold nothing back.
     const auto& cells = grid_.cells();
     for (std::size_t k = 0; k < obstacles.size(); ++k) {
       const Obstacle<D>& o = obstacles[k];
@@ -155,15 +155,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const Obstacle<D>& q = obstacles[m];
         if (m == k || (q.dynamic && m < k)) continue;
         Vec<D> out;  // from the other solid towards the ball's centre
-        double gap;
-        if (q.dynamic) {
-          const Vec<D> d = o.a - q.a;
-          const double len = d.norm();
-          out = len > 0.0 ? Vec<D>(d / len) : Vec<D>::Unit(D - 1);
-          gap = len - o.radius - q.radius;
-        } else {
-          gap = signed_distance(q, o.a, &out) - o.radius;
-        }
+        const double gap = signed_distance(q, o.a, &out) - o.radius;
         if (gap >= h) continue;
         const std::int64_t pair = static_cast<std::int64_t>(k * obstacles.size() + m);
         std::array<int, D> ghost{};
