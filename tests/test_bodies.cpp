@@ -248,12 +248,7 @@ TEST(Bodies, DroppedSphereIsCaughtByTheBed3D) {
 template <int D>
 void ball_rolls(SceneConfig s, double rolling_fraction) {
   const double r = 0.04, v0 = 1.0, mu = 0.5, g = 9.81;
-  s.sand.resize(1);
-  s.sand[0].shape = SandShape::Box;
-  s.sand[0].min = Vec3d{0, 0, 0};
-  s.sand[0].max = D == 2 ? Vec3d{0.05, 0.05, 0} : Vec3d{0.05, 0.05, 0.05};
-  s.spouts.clear();
-  s.obstacles.clear();
+  s = test::small_block_only<D>(std::move(s), Vec3d{0, 0, 0});
   ObstacleConfig ball;
   ball.shape = ObstacleShape::Ball;
   ball.center = D == 2 ? Vec3d{0.1, r, 0} : Vec3d{0.1, 0.125, r};

@@ -5,8 +5,7 @@
 // velocities as a second body of the same row (cone_problem.hpp). Sources:
 // rigid-body mechanics (rolling and sliding down an incline, a perfectly
 // inelastic collision: the model has no restitution) and the conservation
-// of momentum. The sand is a small block far from the balls, which they
-// never meet.
+// of momentum.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,17 +29,11 @@ constexpr double kTolerance = 1e-6;  // a tenth of the shipped scenes' default
 
 Vec3d vec3(double x, double y, double z = 0.0) { return Vec3d{x, y, z}; }
 
-// The scene's sand replaced by one small block at `corner` (its lowest
-// corner), and no obstacles or spouts.
+// The scene's sand as one small block in the top far corner, above every
+// ramp and belt of these tests, which the balls never meet.
 template <int D>
-SceneConfig bare_scene(SceneConfig s, const Vec3d& corner) {
-  s.sand.resize(1);
-  s.sand[0].shape = SandShape::Box;
-  s.sand[0].min = corner;
-  s.sand[0].max = Vec3d{corner[0] + 0.05, corner[1] + 0.05, D == 3 ? corner[2] + 0.05 : 0.0};
-  s.spouts.clear();
-  s.obstacles.clear();
-  return s;
+SceneConfig with_far_sand(const SceneConfig& base) {
+  return test::small_block_only<D>(base, D == 2 ? vec3(0.44, 0.34) : vec3(0.44, 0.0, 0.29));
 }
 
 ObstacleConfig ball_config(const Vec3d& centre, double r, double mu, double density,
@@ -66,7 +59,7 @@ ObstacleConfig ball_config(const Vec3d& centre, double r, double mu, double dens
 template <int D>
 void ball_on_ramp(SceneConfig base, double plane_mu, double expected_fraction) {
   const double theta = 20.0 * kPi / 180.0, r = 0.04, T = 0.25, dt = 1.0 / 240;
-  SceneConfig s = bare_scene<D>(base, D == 2 ? vec3(0.44, 0.34) : vec3(0.44, 0.0, 0.29));
+  SceneConfig s = with_far_sand<D>(base);
   // The plane through (0, 0.25) (2D) or (0, 0, 0.25) (3D), normal
   // (sin theta, cos theta) in the x-up plane.
   ObstacleConfig plane;
@@ -126,7 +119,7 @@ TEST(BodyContacts, DiskSlidesDownAFrictionlessRamp2D) {
 template <int D>
 void ball_on_belt(SceneConfig base, double expected_fraction) {
   const double r = 0.04, vb = 1.0, dt = 1.0 / 240;
-  SceneConfig s = bare_scene<D>(base, D == 2 ? vec3(0.44, 0.34) : vec3(0.44, 0.0, 0.29));
+  SceneConfig s = with_far_sand<D>(base);
   ObstacleConfig belt;
   belt.shape = ObstacleShape::Plane;
   belt.point = D == 2 ? vec3(0.0, 0.05) : vec3(0.0, 0.0, 0.05);
@@ -167,7 +160,7 @@ TEST(BodyContacts, SphereOnABeltRollsAtTwoSeventhsOfItsSpeed3D) {
 template <int D>
 void balls_collide(SceneConfig base, double density2) {
   const double r = 0.04, v0 = 1.0, dt = 1.0 / 240;
-  SceneConfig s = bare_scene<D>(base, D == 2 ? vec3(0.44, 0.34) : vec3(0.44, 0.0, 0.29));
+  SceneConfig s = with_far_sand<D>(base);
   s.boundary.faces[2 * (D - 1)] = BoundaryType::Slip;  // the floor
   const double y = 0.125;
   s.obstacles.push_back(

@@ -82,6 +82,20 @@ inline SceneConfig scene(const std::string& name, const std::vector<std::string>
   return load_scene(scene_file(name), overrides);
 }
 
+// The scene with its sand replaced by one small block (5 cm on a side) at
+// `corner` (its lowest corner), and no obstacles or spouts: for tests of
+// rigid bodies that must never meet the sand.
+template <int D>
+SceneConfig small_block_only(SceneConfig s, const Vec3d& corner) {
+  s.sand.resize(1);
+  s.sand[0].shape = SandShape::Box;
+  s.sand[0].min = corner;
+  s.sand[0].max = Vec3d{corner[0] + 0.05, corner[1] + 0.05, D == 3 ? corner[2] + 0.05 : 0.0};
+  s.spouts.clear();
+  s.obstacles.clear();
+  return s;
+}
+
 // Runs to time t with adaptive steps; checks every step's solver report
 // (the residual is below the tolerance, or the step says it hit the cap).
 template <int D>
