@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/slide_batch.hpp"
 #include "solver/team.hpp"
 
 namespace sablier {
@@ -116,9 +117,50 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   p.lambda[j] += dl;
 }
 
-// One exact local update of row j.
+// Row j's update, given its new stress x in rotated coordinates and its old
+// one x_old (both rotated), and the apex shift of its cone along e_0.
 template <int D>
-inline void update_row(ConeProblem<D>& p, int j) {
+inline void finish_row(ConeProblem<D>& p, int j, const SymVec<D>& x, const SymVec<D>& x_old,
+                       double shift) {
+  const LocalDelassus<sym_size(D)>& W = p.delassus[j];
+  SymVec<D> shifted = x;
+  shifted[0] -= shift;
+  const SymVec<D> dl = W.unrotate(shifted - x_old);
+  if (dl.squaredNorm() == 0.0) return;
+  scatter_stress<D>(p, j, dl);
+  p.lambda[j] += dl;
+}
+
+// Rows of a thread's share of a colour that wait for their slide solve, which
+// slide_batch.hpp does eight at a time. Rows of one colour have disjoint
+// stencils, so deferring their updates to the end of the batch changes
+// nothing.
+template <int D>
+struct SlideQueue {
+  static constexpr int SD = sym_size(D);
+  static constexpr int kCapacity = SlideBatch<SD>::kCapacity;
+  SlideBatch<SD> batch;
+  int row[kCapacity];
+  SymVec<D> x_old[kCapacity];
+  double shift[kCapacity];
+
+  void flush(ConeProblem<D>& p) {
+    batch.solve();
+    for (int l = 0; l < batch.size; ++l) {
+      const int j = row[l];
+      p.state[j] = DPCase::Slide;
+      p.beta[j] = batch.beta[l];
+      finish_row<D>(p, j, batch.solution(l), x_old[l], shift[l]);
+    }
+    batch.size = 0;
+  }
+};
+
+// One exact local update of row j, or, for a sand row that needs a slide
+// solve, its place in `queue` (flushed when full; the caller flushes the
+// rest at the end of its rows).
+template <int D>
+inline void update_row(ConeProblem<D>& p, int j, SlideQueue<D>& queue) {
   constexpr int SD = sym_size(D);
   using V = Eigen::Matrix<double, SD, 1>;
   if (j >= p.first_contact) {
@@ -138,16 +180,31 @@ inline void update_row(ConeProblem<D>& p, int j) {
   // Cohesion: the cone's apex sits at lambda = -shift e_0; solve for the
   // shifted stress lambda + shift e_0 (METHOD.md section 1).
   const double shift = p.cohesion[j];
-  V e0 = V::Zero();
-  e0[0] = shift;
-  if (shift != 0.0) b -= W.apply_rotated(e0);
+  if (shift != 0.0) {
+    V e0 = V::Zero();
+    e0[0] = shift;
+    b -= W.apply_rotated(e0);
+  }
   V x;
-  p.state[j] = solve_drucker_prager_rotated<SD>(W, b, p.aperture[j], x, p.beta[j]);
-  x -= e0;
-  const V dl = W.unrotate(x - x_old);
-  if (dl.squaredNorm() == 0.0) return;
-  scatter_stress<D>(p, j, dl);
-  p.lambda[j] += dl;
+  DPCase result;
+  if (solve_without_slide<SD>(W, b, p.aperture[j], x, result)) {
+    p.state[j] = result;
+    p.beta[j] = 0.0;
+    finish_row<D>(p, j, x, x_old, shift);
+    return;
+  }
+  const int l = queue.batch.add(W, b, p.aperture[j], p.beta[j]);
+  queue.row[l] = j;
+  queue.x_old[l] = x_old;
+  queue.shift[l] = shift;
+  if (queue.batch.full()) queue.flush(p);
+}
+
+// Rows [begin, end) of one colour (or the bodies' rows, in order).
+template <int D>
+inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue) {
+  for (int j = begin; j < end; ++j) update_row<D>(p, j, queue);
+  queue.flush(p);
 }
 
 // K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the
@@ -464,6 +521,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     const auto [q0, q1] = team.split(nf);
     const auto [j0, j1] = team.split(n);
     typename AndersonMixer<D>::State mix_state;
+    SlideQueue<D> queue;
     int my_iterations = 0;
     double my_residual = 0.0;
     double best = std::numeric_limits<double>::infinity();
@@ -477,11 +535,10 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
         const int begin = p.colour_start[c], end = p.colour_start[c + 1];
         const int split = std::clamp(p.first_body_row, begin, end);
         const auto [c0, c1] = team.split(begin, split);
-        for (int j = c0; j < c1; ++j) update_row<D>(p, j);
+        update_rows<D>(p, c0, c1, queue);
         team.sync();
         if (split < end) {
-          if (team.rank == 0)
-            for (int j = split; j < end; ++j) update_row<D>(p, j);
+          if (team.rank == 0) update_rows<D>(p, split, end, queue);
           team.sync();
         }
       }

@@ -164,6 +164,40 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
 
 }  // namespace detail
 
+// Steps 1 and 2 of the local solve in rotated coordinates (b and x rotated,
+// r = (x_N, Q^T x_T)): separation, the frictionless case and the stick
+// candidate. Returns false, with x = 0, when none holds and the row needs a
+// slide solve (step 3: solve_drucker_prager_rotated, or a SlideBatch).
+template <int S>
+inline bool solve_without_slide(const LocalDelassus<S>& W, const Eigen::Matrix<double, S, 1>& b,
+                                double aperture, Eigen::Matrix<double, S, 1>& x, DPCase& result) {
+  using VecT = Eigen::Matrix<double, S - 1, 1>;
+  constexpr int T = S - 1;
+  x.setZero();
+  // 1. Separation: the material is not compressed at this node.
+  if (W.degenerate || b[0] >= 0.0) {
+    result = DPCase::Separation;
+    return true;
+  }
+  // Frictionless: x_T = 0 exactly, y_N = 0.
+  if (aperture <= 0.0) {
+    x[0] = -b[0] / W.w_nn;
+    result = DPCase::Slide;
+    return true;
+  }
+  // 2. Stick: x = -W^{-1} b, from the stored inverses (no division).
+  const VecT d = b.template tail<T>();
+  const double xn = (W.c_inv_ev.dot(d) - b[0]) * W.inv_schur;
+  const VecT z = -(d + W.c * xn).cwiseProduct(W.inv_ev);
+  if (xn > 0.0 && z.squaredNorm() <= aperture * aperture * xn * xn) {
+    x[0] = xn;
+    x.template tail<T>() = z;
+    result = DPCase::Stick;
+    return true;
+  }
+  return false;
+}
+
 // Solves the local problem in rotated coordinates; b and x are rotated
 // (r = (x_N, Q^T x_T)). Returns the case that holds.
 // `beta` is in/out: on entry a guess of the plastic multiplier (0 for none,
@@ -179,27 +213,11 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
                                            Eigen::Matrix<double, S, 1>& x, double& beta) {
   using VecT = Eigen::Matrix<double, S - 1, 1>;
   constexpr int T = S - 1;
-  x.setZero();
   const double guess = beta;
   beta = 0.0;
-  // 1. Separation: the material is not compressed at this node.
-  if (W.degenerate || b[0] >= 0.0) return DPCase::Separation;
+  DPCase result;
+  if (solve_without_slide<S>(W, b, aperture, x, result)) return result;
   const VecT d = b.template tail<T>();
-  // Frictionless: x_T = 0 exactly, y_N = 0.
-  if (aperture <= 0.0) {
-    x[0] = -b[0] / W.w_nn;
-    return DPCase::Slide;
-  }
-  // 2. Stick: x = -W^{-1} b, from the stored inverses (no division).
-  {
-    const double xn = (W.c_inv_ev.dot(d) - b[0]) * W.inv_schur;
-    const VecT z = -(d + W.c * xn).cwiseProduct(W.inv_ev);
-    if (xn > 0.0 && z.squaredNorm() <= aperture * aperture * xn * xn) {
-      x[0] = xn;
-      x.template tail<T>() = z;
-      return DPCase::Stick;
-    }
-  }
   // 3. Slide: f(0) > 0 here and f < 0 for large beta (x_N -> -b_N / w_nn > 0,
   // z -> 0). Safeguarded Newton from the guess (or from W's scale without
   // one): steps leaving the bracket [lo, hi] bisect it, or, while no point
