@@ -156,55 +156,65 @@ struct SlideQueue {
   }
 };
 
-// One exact local update of row j, or, for a sand row that needs a slide
-// solve, its place in `queue` (flushed when full; the caller flushes the
-// rest at the end of its rows).
+// Sand row j's local problem (METHOD.md step 5) in rotated coordinates: its
+// stress x_old and b, the strain rate with x_j = 0 (shifted by the cohesion).
 template <int D>
-inline void update_row(ConeProblem<D>& p, int j, SlideQueue<D>& queue) {
-  constexpr int SD = sym_size(D);
-  using V = Eigen::Matrix<double, SD, 1>;
-  if (j >= p.first_contact) {
-    update_contact_row<D>(p, j);
-    return;
-  }
-  const LocalDelassus<SD>& W = p.delassus[j];
-  if (W.degenerate) {
-    p.state[j] = DPCase::Inactive;
-    return;
-  }
-  V y = apply_B<D>(p, j);
+inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymVec<D>& b) {
+  const LocalDelassus<sym_size(D)>& W = p.delassus[j];
+  SymVec<D> y = apply_B<D>(p, j);
   y[0] += p.k[j];
-  y /= p.volume[j];
-  const V x_old = W.rotate(p.lambda[j]);
-  V b = W.rotate(y) - W.apply_rotated(x_old);
+  y *= 1.0 / p.volume[j];
+  x_old = W.rotate(p.lambda[j]);
+  b = W.rotate(y) - W.apply_rotated(x_old);
   // Cohesion: the cone's apex sits at lambda = -shift e_0; solve for the
   // shifted stress lambda + shift e_0 (METHOD.md section 1).
   const double shift = p.cohesion[j];
   if (shift != 0.0) {
-    V e0 = V::Zero();
+    SymVec<D> e0 = SymVec<D>::Zero();
     e0[0] = shift;
     b -= W.apply_rotated(e0);
   }
-  V x;
-  DPCase result;
-  if (solve_without_slide<SD>(W, b, p.aperture[j], x, result)) {
-    p.state[j] = result;
-    p.beta[j] = 0.0;
-    finish_row<D>(p, j, x, x_old, shift);
-    return;
-  }
-  const int l = queue.batch.add(W, b, p.aperture[j], p.beta[j]);
-  queue.row[l] = j;
-  queue.x_old[l] = x_old;
-  queue.shift[l] = shift;
-  if (queue.batch.full()) queue.flush(p);
 }
 
-// Rows [begin, end) of one colour (or the bodies' rows, in order).
+// Exact local updates of rows [begin, end), all of one colour (rows of one
+// colour have disjoint stencils, so their order does not matter). Sand rows
+// go eight at a time: first every row's local problem, a loop without
+// branches whose loads and arithmetic overlap from row to row, then each
+// row's case, those that separate or stick updated at once and those that
+// slide queued for a batched slide solve (flushed when full and at the end).
+// Contact rows (own colours) are updated one by one, in order.
 template <int D>
 inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue) {
-  for (int j = begin; j < end; ++j) update_row<D>(p, j, queue);
+  constexpr int SD = sym_size(D);
+  constexpr int kChunk = 8;
+  for (int j = begin; j < std::min(end, p.first_contact); j += kChunk) {
+    const int n = std::min(kChunk, std::min(end, p.first_contact) - j);
+    SymVec<D> x_old[kChunk], b[kChunk];
+    for (int r = 0; r < n; ++r) local_problem<D>(p, j + r, x_old[r], b[r]);
+    for (int r = 0; r < n; ++r) {
+      const int row = j + r;
+      const LocalDelassus<SD>& W = p.delassus[row];
+      if (W.degenerate) {
+        p.state[row] = DPCase::Inactive;
+        continue;
+      }
+      SymVec<D> x;
+      DPCase result;
+      if (solve_without_slide<SD>(W, b[r], p.aperture[row], x, result)) {
+        p.state[row] = result;
+        p.beta[row] = 0.0;
+        finish_row<D>(p, row, x, x_old[r], p.cohesion[row]);
+        continue;
+      }
+      const int l = queue.batch.add(W, b[r], p.aperture[row], p.beta[row]);
+      queue.row[l] = row;
+      queue.x_old[l] = x_old[r];
+      queue.shift[l] = p.cohesion[row];
+      if (queue.batch.full()) queue.flush(p);
+    }
+  }
   queue.flush(p);
+  for (int j = std::max(begin, p.first_contact); j < end; ++j) update_contact_row<D>(p, j);
 }
 
 // K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the

@@ -106,25 +106,30 @@ inline bool slide_iteration(SlideLanes<T>& g) {
   using simd::Vm;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const Vd beta = g.beta;
-  Vd r[T], inv_den;
-  if constexpr (T == 2) {
-    // One division, as eval_slide in 2D.
-    const Vd e0 = g.ev[0] + beta, e1 = g.ev[1] + beta;
-    const Vd p = e0 * e1;
-    const Vd den_p = g.w_nn * p - g.c[0] * g.c[0] * e1 - g.c[1] * g.c[1] * e0;
-    const Vd q = 1.0 / (p * den_p);
-    const Vd inv_p = den_p * q;
-    r[0] = e1 * inv_p;
-    r[1] = e0 * inv_p;
-    inv_den = p * p * q;
-  } else {
-    Vd den = g.w_nn;
-    for (int k = 0; k < T; ++k) {
-      r[k] = 1.0 / (g.ev[k] + beta);
-      den -= g.c[k] * g.c[k] * r[k];
-    }
-    inv_den = 1.0 / den;
+  // r_k = 1 / (ev_k + beta) and 1 / (w_nn - sum_k c_k^2 r_k) from one
+  // division (eval_slide does this in 2D): with e_k = ev_k + beta, their
+  // product P, the products E_k of all but e_k and den_P = w_nn P - sum_k
+  // c_k^2 E_k (the denominator times P), q = 1 / (P den_P) gives
+  // r_k = E_k den_P q and 1 / den = P^2 q.
+  Vd e[T], E[T], r[T];
+  for (int k = 0; k < T; ++k) e[k] = g.ev[k] + beta;
+  Vd prefix = simd::splat(1.0);
+  for (int k = 0; k < T; ++k) {
+    E[k] = prefix;
+    prefix *= e[k];
   }
+  const Vd P = prefix;
+  Vd suffix = simd::splat(1.0);
+  for (int k = T - 1; k >= 0; --k) {
+    E[k] *= suffix;
+    suffix *= e[k];
+  }
+  Vd den_p = g.w_nn * P;
+  for (int k = 0; k < T; ++k) den_p -= g.c[k] * g.c[k] * E[k];
+  const Vd q = 1.0 / (P * den_p);
+  const Vd inv_p = den_p * q;
+  for (int k = 0; k < T; ++k) r[k] = E[k] * inv_p;
+  const Vd inv_den = P * P * q;
   Vd num = -g.b_n, dnum = simd::splat(0.0), dden = simd::splat(0.0), cr[T];
   for (int k = 0; k < T; ++k) {
     cr[k] = g.c[k] * r[k];
