@@ -229,21 +229,61 @@ constexpr std::int64_t kSumBlock = 1024;
 
 inline std::int64_t sum_blocks(std::int64_t n) { return (n + kSumBlock - 1) / kSumBlock; }
 
-template <class F>
-void deterministic_sums(const Team& team, std::int64_t n, int K, std::vector<double>& partial,
-                        double* out, const F& f) {
+// The same with g(i0, i1, acc) adding the terms of a whole block [i0, i1).
+template <class G>
+void deterministic_block_sums(const Team& team, std::int64_t n, int K, std::vector<double>& partial,
+                              double* out, const G& g) {
   const std::int64_t nb = sum_blocks(n);
   const auto [b0, b1] = team.split(nb);
   for (std::int64_t b = b0; b < b1; ++b) {
     double* acc = partial.data() + b * K;
     std::fill(acc, acc + K, 0.0);
-    const std::int64_t end = std::min(n, (b + 1) * kSumBlock);
-    for (std::int64_t i = b * kSumBlock; i < end; ++i) f(i, acc);
+    g(b * kSumBlock, std::min(n, (b + 1) * kSumBlock), acc);
   }
   team.sync();
   std::fill(out, out + K, 0.0);
   for (std::int64_t b = 0; b < nb; ++b)
     for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
+}
+
+template <class F>
+void deterministic_sums(const Team& team, std::int64_t n, int K, std::vector<double>& partial,
+                        double* out, const F& f) {
+  deterministic_block_sums(team, n, K, partial, out,
+                           [&](std::int64_t i0, std::int64_t i1, double* acc) {
+                             for (std::int64_t i = i0; i < i1; ++i) f(i, acc);
+                           });
+}
+
+// sum_i w_i x_i y_i and sum_i w_i x_i z_i over [i0, i1), four lanes at a
+// time in a fixed order (a function of i0 and i1 alone).
+inline void weighted_dots(const double* w, const double* x, const double* y, const double* z,
+                          std::int64_t i0, std::int64_t i1, double& xy, double& xz) {
+  using simd::Vd;
+  Vd sy = simd::splat(0.0), sz = simd::splat(0.0);
+  std::int64_t i = i0;
+  for (; i + 4 <= i1; i += 4) {
+    const Vd wx = detail::load4(w + i) * detail::load4(x + i);
+    sy += wx * detail::load4(y + i);
+    sz += wx * detail::load4(z + i);
+  }
+  double ty = (sy[0] + sy[1]) + (sy[2] + sy[3]), tz = (sz[0] + sz[1]) + (sz[2] + sz[3]);
+  for (; i < i1; ++i) {
+    ty += w[i] * x[i] * y[i];
+    tz += w[i] * x[i] * z[i];
+  }
+  xy += ty;
+  xz += tz;
+}
+
+// The doubles of a vector of fixed-size Eigen vectors (stored contiguously).
+template <class V>
+inline double* flat(std::vector<V>& v) {
+  return v.data()->data();
+}
+template <class V>
+inline const double* flat(const std::vector<V>& v) {
+  return v.data()->data();
 }
 
 // Anderson acceleration (Walker & Ni 2011, "type II") of the Gauss-Seidel
@@ -327,21 +367,23 @@ class AndersonMixer {
     // stored; k > 0 implies one was). The older entries do not change and are
     // kept in st.gram. (The loop's barrier also orders these writes before
     // the combination below, which splits the free nodes differently.)
-    deterministic_sums(team, nf, 2 * k, partial_, st.sums, [&](std::int64_t q, double* acc) {
-      const Vec<D>& u = p.velocity[free[q]];
-      const Vec<D> f = u - u_before[q];
-      if (record) {
-        dF_[slot][q] = f - f_prev_[q];
-        dGu_[slot][q] = u - gu_prev_[q];
-      }
-      f_prev_[q] = f;
-      gu_prev_[q] = u;
-      for (int a = 0; a < k; ++a) {
-        const Vec<D> wa = w[q].cwiseProduct(dF_[idx[a]][q]);
-        acc[2 * a] += wa.dot(f);
-        acc[2 * a + 1] += wa.dot(dF_[idx[0]][q]);
-      }
-    });
+    deterministic_block_sums(
+        team, nf, 2 * k, partial_, st.sums, [&](std::int64_t b0, std::int64_t b1, double* acc) {
+          for (std::int64_t q = b0; q < b1; ++q) {
+            const Vec<D>& u = p.velocity[free[q]];
+            const Vec<D> f = u - u_before[q];
+            if (record) {
+              dF_[slot][q] = f - f_prev_[q];
+              dGu_[slot][q] = u - gu_prev_[q];
+            }
+            f_prev_[q] = f;
+            gu_prev_[q] = u;
+          }
+          // The sums over the block's doubles (D per free node), vectorised.
+          for (int a = 0; a < k; ++a)
+            weighted_dots(flat(w), flat(dF_[idx[a]]), flat(f_prev_), flat(dF_[idx[0]]), b0 * D,
+                          b1 * D, acc[2 * a], acc[2 * a + 1]);
+        });
     for (int a = 0; a < k; ++a) st.gram[idx[a]][idx[0]] = st.gram[idx[0]][idx[a]] = st.sums[2 * a + 1];
     // Same row split as the combination below: no barrier needed.
     const auto [j0, j1] = team.split(rows);
@@ -360,8 +402,12 @@ class AndersonMixer {
       Vec<D>& u = p.velocity[free[q]];
       for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
     }
-    for (int j = j0; j < j1; ++j)
-      for (int a = 0; a < k; ++a) p.lambda[j] -= gamma[a] * dGl_[idx[a]][j];
+    constexpr int SD = sym_size(D);
+    double* lambda = flat(p.lambda);
+    for (int a = 0; a < k; ++a) {
+      const double* dl = flat(dGl_[idx[a]]);
+      for (std::int64_t i = j0 * SD; i < j1 * SD; ++i) lambda[i] -= gamma[a] * dl[i];
+    }
   }
 
  private:
