@@ -63,6 +63,9 @@ struct SolverConfig {
   double tolerance = 1e-5;  // relative velocity change of the last sweep (docs/method.md)
   int max_iterations = 2000;
   int anderson = 5;  // Anderson acceleration depth; 0 = plain Gauss-Seidel
+  // The solve runs on one thread per this many stress rows, at most the run's
+  // thread count; 0 = always every thread (cone_problem.hpp).
+  int rows_per_thread = 600;
 };
 
 struct TimeConfig {

@@ -526,9 +526,17 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
   }
 }
 
+// The solve's team size (cone_problem.hpp).
+inline int solver_team_size(int rows, int rows_per_thread) {
+  const int most = std::max(1, omp_get_max_threads());
+  if (rows_per_thread <= 0) return most;
+  return std::clamp(rows / rows_per_thread, 1, most);
+}
+
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
-                               int anderson_depth, std::vector<double>* history) {
+                               int anderson_depth, int rows_per_thread,
+                               std::vector<double>* history) {
   SolveReport report;
   const int n = p.rows();
   if (n == 0) return report;
@@ -569,7 +577,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::vector<DPCase> best_state;
   std::vector<Vec<D>> best_u;
   SpinBarrier barrier;
-#pragma omp parallel
+#pragma omp parallel num_threads(solver_team_size(n, rows_per_thread))
   {
 #pragma omp single
     barrier.set_size(omp_get_num_threads());
@@ -671,12 +679,12 @@ SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j) {
   return y / p.volume[j];
 }
 
-#define SABLIER_INSTANTIATE(D)                                                          \
-  template struct ConeProblem<D>;                                                       \
-  template void assemble_delassus<D>(ConeProblem<D>&);                                  \
-  template void apply_stress_to_velocity<D>(ConeProblem<D>&);                           \
-  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int,              \
-                                             std::vector<double>*);                         \
+#define SABLIER_INSTANTIATE(D)                                                       \
+  template struct ConeProblem<D>;                                                    \
+  template void assemble_delassus<D>(ConeProblem<D>&);                               \
+  template void apply_stress_to_velocity<D>(ConeProblem<D>&);                        \
+  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int, int, \
+                                             std::vector<double>*);                  \
   template SymVec<D> row_strain_rate<D>(const ConeProblem<D>&, int);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
