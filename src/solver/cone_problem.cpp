@@ -122,10 +122,7 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
 template <int D>
 inline void finish_row(ConeProblem<D>& p, int j, const SymVec<D>& x, const SymVec<D>& x_old,
                        double shift) {
-  const LocalDelassus<sym_size(D)>& W = p.delassus[j];
-  SymVec<D> shifted = x;
-  shifted[0] -= shift;
-  const SymVec<D> dl = W.unrotate(shifted - x_old);
+  const SymVec<D> dl = p.delassus[j].unrotated_change(x, x_old, shift);
   if (dl.squaredNorm() == 0.0) return;
   scatter_stress<D>(p, j, dl);
   p.lambda[j] += dl;
@@ -164,8 +161,7 @@ inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymV
   SymVec<D> y = apply_B<D>(p, j);
   y[0] += p.k[j];
   y *= 1.0 / p.volume[j];
-  x_old = W.rotate(p.lambda[j]);
-  b = W.rotate(y) - W.apply_rotated(x_old);
+  W.rotated_problem(y, p.lambda[j], x_old, b);
   // Cohesion: the cone's apex sits at lambda = -shift e_0; solve for the
   // shifted stress lambda + shift e_0 (METHOD.md section 1).
   const double shift = p.cohesion[j];

@@ -87,6 +87,35 @@ struct LocalDelassus {
     x.template tail<T>() = Q * r.template tail<T>();
     return x;
   }
+  // A row's old stress x_old = rotate(lambda) and b = rotate(y) - W x_old in
+  // rotated coordinates, from its strain rate y and stress lambda.
+  void rotated_problem(const VecS& y, const VecS& lambda, VecS& x_old, VecS& b) const {
+    x_old[0] = lambda[0];
+    double b0 = y[0] - w_nn * lambda[0];
+    for (int k = 0; k < T; ++k) {
+      double z = 0.0, yt = 0.0;
+      for (int m = 0; m < T; ++m) {
+        z += Q(m, k) * lambda[1 + m];
+        yt += Q(m, k) * y[1 + m];
+      }
+      x_old[1 + k] = z;
+      b0 -= c[k] * z;
+      b[1 + k] = yt - c[k] * lambda[0] - ev[k] * z;
+    }
+    b[0] = b0;
+  }
+  // The stress change unrotate(x - x_old) less `shift` along e_0 (plain
+  // loops: Eigen's small temporaries cost more than the arithmetic here).
+  VecS unrotated_change(const VecS& x, const VecS& x_old, double shift) const {
+    VecS out;
+    out[0] = x[0] - shift - x_old[0];
+    for (int m = 0; m < T; ++m) {
+      double s = 0.0;
+      for (int k = 0; k < T; ++k) s += Q(m, k) * (x[1 + k] - x_old[1 + k]);
+      out[1 + m] = s;
+    }
+    return out;
+  }
   // W r in rotated coordinates.
   VecS apply_rotated(const VecS& r) const {
     VecS out;
@@ -171,7 +200,6 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
 template <int S>
 inline bool solve_without_slide(const LocalDelassus<S>& W, const Eigen::Matrix<double, S, 1>& b,
                                 double aperture, Eigen::Matrix<double, S, 1>& x, DPCase& result) {
-  using VecT = Eigen::Matrix<double, S - 1, 1>;
   constexpr int T = S - 1;
   x.setZero();
   // 1. Separation: the material is not compressed at this node.
@@ -186,15 +214,21 @@ inline bool solve_without_slide(const LocalDelassus<S>& W, const Eigen::Matrix<d
     return true;
   }
   // 2. Stick: x = -W^{-1} b, from the stored inverses (no division).
-  const VecT d = b.template tail<T>();
-  const double xn = (W.c_inv_ev.dot(d) - b[0]) * W.inv_schur;
-  const VecT z = -(d + W.c * xn).cwiseProduct(W.inv_ev);
-  if (xn > 0.0 && z.squaredNorm() <= aperture * aperture * xn * xn) {
+  double xn = -b[0];
+  for (int k = 0; k < T; ++k) xn += W.c_inv_ev[k] * b[1 + k];
+  xn *= W.inv_schur;
+  double zz = 0.0;
+  for (int k = 0; k < T; ++k) {
+    const double z = -(b[1 + k] + W.c[k] * xn) * W.inv_ev[k];
+    x[1 + k] = z;
+    zz += z * z;
+  }
+  if (xn > 0.0 && zz <= aperture * aperture * xn * xn) {
     x[0] = xn;
-    x.template tail<T>() = z;
     result = DPCase::Stick;
     return true;
   }
+  x.setZero();
   return false;
 }
 
