@@ -65,7 +65,7 @@ struct SolverConfig {
   int anderson = 5;  // Anderson acceleration depth; 0 = plain Gauss-Seidel
   // The solve runs on one thread per this many stress rows, at most the run's
   // thread count; 0 = always every thread (cone_problem.hpp).
-  int rows_per_thread = 600;
+  int rows_per_thread = 1000;
 };
 
 struct TimeConfig {

@@ -148,10 +148,11 @@ void apply_stress_to_velocity(ConeProblem<D>& p);
 // The sweeps run on one OpenMP thread per `rows_per_thread` rows, at most
 // omp_get_max_threads() (0: always that many). Each colour ends with a
 // barrier and hands velocities to the other threads, so a small problem is
-// faster on fewer threads (measured on the 2D collapse on 2 threads against
-// 1: 43 against 33 us per sweep at 390 rows, 56 against 48 at 565, level at
-// 1,040, 1.33 times faster at 2,100; 3D collapse, 3,460 rows: 1.5 times).
-// The result does not depend on it.
+// faster on fewer threads. Measured on 2 threads against 1 (2026-12-02,
+// 2-core guest): 2D collapse 43 against 33 us per sweep at 390 rows and 56
+// against 48 at 565; silo2d level at 1,530; 2D collapse at 2,100 rows 1.0-
+// 1.13 times faster; 3D collapse at 3,410 rows 1.2-1.4 times faster. The
+// result does not depend on it.
 // `history`, when given, receives every sweep's residual.
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
