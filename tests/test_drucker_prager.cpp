@@ -10,14 +10,8 @@
 #include "dp_checks.hpp"
 #include "solver/drucker_prager.hpp"
 
-namespace sablier {
+namespace sablier::test {
 namespace {
-
-using test::in_drucker_prager;
-using test::kTol;
-using test::MatS;
-using test::random_spd;
-using test::VecS;
 
 template <int S>
 void random_problems(std::uint64_t seed) {
@@ -121,4 +115,4 @@ TEST(DruckerPrager, ThreeCases2D) { three_cases<3>(); }
 TEST(DruckerPrager, ThreeCases3D) { three_cases<6>(); }
 
 }  // namespace
-}  // namespace sablier
+}  // namespace sablier::test

@@ -16,14 +16,8 @@
 #include "dp_checks.hpp"
 #include "solver/slide_batch.hpp"
 
-namespace sablier {
+namespace sablier::test {
 namespace {
-
-using test::in_drucker_prager;
-using test::kTol;
-using test::MatS;
-using test::random_spd;
-using test::VecS;
 
 template <int S>
 struct SlideCase {
@@ -138,4 +132,4 @@ TEST(SlideBatch, LanesIndependent2D) { lanes_independent<3>(31); }
 TEST(SlideBatch, LanesIndependent3D) { lanes_independent<6>(32); }
 
 }  // namespace
-}  // namespace sablier
+}  // namespace sablier::test
