@@ -23,7 +23,7 @@ const testing::Environment* const kOneThread =
 
 using test::scene;
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 constexpr double kG = 9.81;
 constexpr double kTolerance = 1e-6;  // a tenth of the shipped scenes' default
 

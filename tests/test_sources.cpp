@@ -30,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using Tri = std::array<Point3, 3>;
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 // A folder of this process (ctest runs the tests side by side).
 fs::path temp_dir(const std::string& name) { return test::temp_dir("sources_" + name); }

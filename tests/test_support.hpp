@@ -20,6 +20,8 @@
 
 namespace sablier::test {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 // One OpenMP thread for a whole test program: results do not depend on the
 // thread count (tests check it where it matters), and ctest may run test
 // programs side by side on few cores, where OpenMP's spinning threads slow
