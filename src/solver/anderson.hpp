@@ -54,25 +54,41 @@ void deterministic_sums(const Team& team, std::int64_t n, int K, std::vector<dou
                            });
 }
 
-// sum_i w_i x_i y_i and sum_i w_i x_i z_i over [i0, i1), four lanes at a
-// time in a fixed order (a function of i0 and i1 alone).
-inline void weighted_dots(const double* w, const double* x, const double* y, const double* z,
-                          std::int64_t i0, std::int64_t i1, double& xy, double& xz) {
+// Lane sums of sum_i w_i x_a,i y_i and sum_i w_i x_a,i z_i for a < k over
+// the doubles [i0, i1), a whole number of quads: sy[a] and sz[a] hold four
+// partial sums each, lane l taking the doubles i = l mod 4. Called on
+// consecutive ranges, it adds every quad in the same order as one call over
+// their union, so the result depends only on where the whole range starts
+// and ends (weighted_dot_finish).
+inline void weighted_dot_lanes(const double* w, const double* const* x, int k, const double* y,
+                               const double* z, std::int64_t i0, std::int64_t i1, simd::Vd* sy,
+                               simd::Vd* sz) {
   using simd::Vd;
-  Vd sy = simd::splat(0.0), sz = simd::splat(0.0);
-  std::int64_t i = i0;
-  for (; i + 4 <= i1; i += 4) {
-    const Vd wx = detail::load4(w + i) * detail::load4(x + i);
-    sy += wx * detail::load4(y + i);
-    sz += wx * detail::load4(z + i);
+  for (std::int64_t i = i0; i < i1; i += 4) {
+    const Vd wi = detail::load4(w + i), yi = detail::load4(y + i), zi = detail::load4(z + i);
+    for (int a = 0; a < k; ++a) {
+      const Vd wx = wi * detail::load4(x[a] + i);
+      sy[a] += wx * yi;
+      sz[a] += wx * zi;
+    }
   }
-  double ty = (sy[0] + sy[1]) + (sy[2] + sy[3]), tz = (sz[0] + sz[1]) + (sz[2] + sz[3]);
-  for (; i < i1; ++i) {
-    ty += w[i] * x[i] * y[i];
-    tz += w[i] * x[i] * z[i];
+}
+
+// Adds lanes sy[a], sz[a] (pairwise) and then the scalar terms of the doubles
+// [i0, i1) past the last quad to xy[2a] and xz[2a + 1] of acc.
+inline void weighted_dot_finish(const double* w, const double* const* x, int k, const double* y,
+                                const double* z, std::int64_t i0, std::int64_t i1,
+                                const simd::Vd* sy, const simd::Vd* sz, double* acc) {
+  for (int a = 0; a < k; ++a) {
+    double ty = (sy[a][0] + sy[a][1]) + (sy[a][2] + sy[a][3]);
+    double tz = (sz[a][0] + sz[a][1]) + (sz[a][2] + sz[a][3]);
+    for (std::int64_t i = i0; i < i1; ++i) {
+      ty += w[i] * x[a][i] * y[i];
+      tz += w[i] * x[a][i] * z[i];
+    }
+    acc[2 * a] += ty;
+    acc[2 * a + 1] += tz;
   }
-  xy += ty;
-  xz += tz;
 }
 
 // The doubles of a vector of fixed-size Eigen vectors (stored contiguously).
@@ -137,15 +153,22 @@ class AndersonMixer {
   // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
   // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2. Called by
   // every thread of the solver's parallel region (or serially), each with
-  // its own state `st`. Ends without a barrier: the caller's next
-  // loops over its share of the free nodes or the rows see this thread's own
-  // writes, and anything else must wait for a barrier.
+  // its own state `st`; own_rows(f) calls f(j0, j1) on each range of rows
+  // the thread updates in the sweeps. Leaves p holding x_{k+1} and
+  // u(x_{k+1}), and u_before = u(x_{k+1}) at the free nodes, ready for the
+  // next sweep. Ends without a barrier: the thread has written its own rows
+  // and its share of the free nodes (Team::split), which is what the caller
+  // may read back before its next barrier.
+  template <class OwnRows>
   void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
-           const std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
-           State& st) const {
-    if (m_ <= 0) return;
+           std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
+           const OwnRows& own_rows, State& st) const {
     const std::int64_t nf = static_cast<std::int64_t>(free.size());
-    const int rows = p.rows();
+    const auto [q0, q1] = team.split(nf);
+    if (m_ <= 0) {
+      for (std::int64_t q = q0; q < q1; ++q) u_before[q] = p.velocity[free[q]];
+      return;
+    }
     // The history bookkeeping, the same on every thread.
     const bool grew = st.have_prev && fnorm2 > kGrowth * kGrowth * st.fnorm2_prev;
     if (grew) st.count = 0;  // restart
@@ -164,50 +187,71 @@ class AndersonMixer {
     // sweep's f and u(G), and accumulate r_a = <dF_a, f>_M and the Gram
     // matrix's new row A_a0 = <dF_a, dF_0>_M (dF_0 = the difference just
     // stored; k > 0 implies one was). The older entries do not change and are
-    // kept in st.gram. (The loop's barrier also orders these writes before
-    // the combination below, which splits the free nodes differently.)
+    // kept in st.gram. Each block goes by chunks of kChunk nodes, the sums
+    // right after the differences, while they are in the first-level cache.
+    // (The loop's barrier also orders these writes before the combination
+    // below, which splits the free nodes differently.)
+    const double* x[kMaxDepth];
+    for (int a = 0; a < k; ++a) x[a] = flat(dF_[idx[a]]);
     deterministic_block_sums(
         team, nf, 2 * k, partial_, st.sums, [&](std::int64_t b0, std::int64_t b1, double* acc) {
-          for (std::int64_t q = b0; q < b1; ++q) {
-            const Vec<D>& u = p.velocity[free[q]];
-            const Vec<D> f = u - u_before[q];
-            if (record) {
-              dF_[slot][q] = f - f_prev_[q];
-              dGu_[slot][q] = u - gu_prev_[q];
+          simd::Vd sy[kMaxDepth], sz[kMaxDepth];
+          for (int a = 0; a < k; ++a) sy[a] = sz[a] = simd::splat(0.0);
+          // The doubles [b0 D, quads) go by quads, the rest one by one.
+          const std::int64_t quads = b0 * D + ((b1 - b0) * D / 4) * 4;
+          for (std::int64_t c0 = b0; c0 < b1; c0 += kChunk) {
+            const std::int64_t c1 = std::min(b1, c0 + kChunk);
+            for (std::int64_t q = c0; q < c1; ++q) {
+              const Vec<D>& u = p.velocity[free[q]];
+              const Vec<D> f = u - u_before[q];
+              if (record) {
+                dF_[slot][q] = f - f_prev_[q];
+                dGu_[slot][q] = u - gu_prev_[q];
+              }
+              f_prev_[q] = f;
+              gu_prev_[q] = u;
             }
-            f_prev_[q] = f;
-            gu_prev_[q] = u;
+            weighted_dot_lanes(flat(w), x, k, flat(f_prev_), x[0], c0 * D,
+                               std::min(c1 * D, quads), sy, sz);
           }
-          // The sums over the block's doubles (D per free node), vectorised.
-          for (int a = 0; a < k; ++a)
-            weighted_dots(flat(w), flat(dF_[idx[a]]), flat(f_prev_), flat(dF_[idx[0]]), b0 * D,
-                          b1 * D, acc[2 * a], acc[2 * a + 1]);
+          weighted_dot_finish(flat(w), x, k, flat(f_prev_), x[0], quads, b1 * D, sy, sz, acc);
         });
     for (int a = 0; a < k; ++a)
       st.gram[idx[a]][idx[0]] = st.gram[idx[0]][idx[a]] = st.sums[2 * a + 1];
-    // Same row split as the combination below: no barrier needed.
-    const auto [j0, j1] = team.split(rows);
-    const auto [q0, q1] = team.split(nf);
-    for (int j = j0; j < j1; ++j) {
-      if (record) dGl_[slot][j] = p.lambda[j] - gl_prev_[j];
-      gl_prev_[j] = p.lambda[j];
-    }
-    if (k == 0) return;
-    if (!solve_gram(k, st)) {
+    bool combine = k > 0;
+    if (combine && !solve_gram(k, st)) {
       st.count = 0;
-      return;
+      combine = false;
     }
     const double* gamma = st.gamma;
+    // The thread's free nodes (the solver's split): u(x_{k+1}), also kept as
+    // the next sweep's u_before.
     for (std::int64_t q = q0; q < q1; ++q) {
-      Vec<D>& u = p.velocity[free[q]];
-      for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
+      Vec<D> u = p.velocity[free[q]];
+      if (combine) {
+        for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
+        p.velocity[free[q]] = u;
+      }
+      u_before[q] = u;
     }
+    // The thread's rows: the new difference of the stresses, then x_{k+1}.
     constexpr int SD = sym_size(D);
     double* lambda = flat(p.lambda);
-    for (int a = 0; a < k; ++a) {
-      const double* dl = flat(dGl_[idx[a]]);
-      for (std::int64_t i = j0 * SD; i < j1 * SD; ++i) lambda[i] -= gamma[a] * dl[i];
-    }
+    const double* dl[kMaxDepth];
+    for (int a = 0; a < k; ++a) dl[a] = flat(dGl_[idx[a]]);
+    double* new_dl = flat(dGl_[slot]);
+    double* prev = flat(gl_prev_);
+    own_rows([&](int j0, int j1) {
+      const std::int64_t i0 = std::int64_t(j0) * SD, i1 = std::int64_t(j1) * SD;
+      if (record)
+        for (std::int64_t i = i0; i < i1; ++i) new_dl[i] = lambda[i] - prev[i];
+      std::copy(lambda + i0, lambda + i1, prev + i0);
+      if (combine)
+        for (int a = 0; a < k; ++a) {
+          const double g = gamma[a], *d = dl[a];
+          for (std::int64_t i = i0; i < i1; ++i) lambda[i] -= g * d[i];
+        }
+    });
   }
 
  private:
@@ -236,6 +280,10 @@ class AndersonMixer {
   // collapse at 1.8e-4 (tests/test_solver.cpp).
   static constexpr double kGrowth = 1.2;
   static constexpr double kRegularisation = 1e-10;  // relative Tikhonov shift of A
+  // Free nodes per chunk of the first pass: the chunk's differences and the
+  // arrays its sums read stay in the first-level cache (a multiple of 4, so
+  // that chunks start on a quad).
+  static constexpr std::int64_t kChunk = 64;
   int m_ = 0;
   // The shared history, written in work-shared loops (mutable: mix is const
   // so that its scalar state can only live in the threads' State).

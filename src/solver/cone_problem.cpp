@@ -355,15 +355,29 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     barrier.set_size(omp_get_num_threads());
     const Team team{omp_get_thread_num(), omp_get_num_threads(), &barrier};
     const auto [q0, q1] = team.split(nf);
-    const auto [j0, j1] = team.split(n);
+    // f(j0, j1) on each range of the rows this thread updates in a sweep:
+    // its share of each colour's rows before first_body_row, and the bodies'
+    // rows on the first thread. Loops over rows outside the sweep take the
+    // same ranges, so that a row stays in its thread's cache.
+    const auto own_rows = [&](const auto& f) {
+      for (int c = 0; c < ncol; ++c) {
+        const int begin = p.colour_start[c], end = p.colour_start[c + 1];
+        const int split = std::clamp(p.first_body_row, begin, end);
+        const auto [c0, c1] = team.split(begin, split);
+        if (c0 < c1) f(c0, c1);
+        if (team.rank == 0 && split < end) f(split, end);
+      }
+    };
     typename AndersonMixer<D>::State mix_state;
     SlideQueue<D> queue;
     int my_iterations = 0;
     double my_residual = 0.0;
     double best = std::numeric_limits<double>::infinity();
     bool allocated = false;
+    // u_prev = the velocities before each sweep (after the first, the
+    // mixer leaves them there).
+    for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = p.velocity[free[q]];
     for (int it = 1; it <= max_iterations; ++it) {
-      for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = p.velocity[free[q]];
       team.sync();
       for (int c = 0; c < ncol; ++c) {
         // Rows before first_body_row in parallel, the bodies' rows after
@@ -407,21 +421,26 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           team.sync();
           allocated = true;
         }
-        for (int j = j0; j < j1; ++j) {
-          best_lambda[j] = p.lambda[j];
-          best_state[j] = p.state[j];
-        }
+        own_rows([&](int j0, int j1) {
+          for (int j = j0; j < j1; ++j) {
+            best_lambda[j] = p.lambda[j];
+            best_state[j] = p.state[j];
+          }
+        });
         for (std::int64_t q = q0; q < q1; ++q) best_u[q] = p.velocity[free[q]];
       }
-      if (it < max_iterations) mixer.mix(team, p, free, u_prev, weight, sums[0], mix_state);
+      if (it < max_iterations)
+        mixer.mix(team, p, free, u_prev, weight, sums[0], own_rows, mix_state);
     }
     if (my_residual > tolerance && best < my_residual) {
       // Stopped at the cap on a worse iterate: go back to the best one.
       team.sync();
-      for (int j = j0; j < j1; ++j) {
-        p.lambda[j] = best_lambda[j];
-        p.state[j] = best_state[j];
-      }
+      own_rows([&](int j0, int j1) {
+        for (int j = j0; j < j1; ++j) {
+          p.lambda[j] = best_lambda[j];
+          p.state[j] = best_state[j];
+        }
+      });
       for (std::int64_t q = q0; q < q1; ++q) p.velocity[free[q]] = best_u[q];
       my_residual = best;
     }
