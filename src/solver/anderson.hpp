@@ -19,14 +19,21 @@ namespace solver_detail {
 // K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the
 // block sums in order: the same floating-point result for any thread count.
 // f(i, acc) adds its K terms to acc[0..K). Called by every thread of the
-// team (each fills its share of the blocks; the barrier publishes the block
-// sums, which every thread then adds up itself in the same order, so all
-// threads hold the same `out` without a further barrier). `partial` is the
-// caller's buffer; the caller must not refill it before a barrier (every
-// thread reads it here). `out` is the calling thread's own.
+// team (each fills its share of the blocks, block_share; the barrier
+// publishes the block sums, which every thread then adds up itself in the
+// same order, so all threads hold the same `out` without a further barrier).
+// `partial` is the caller's buffer; the caller must not refill it before a
+// barrier (every thread reads it here). `out` is the calling thread's own.
 constexpr std::int64_t kSumBlock = 1024;
 
 inline std::int64_t sum_blocks(std::int64_t n) { return (n + kSumBlock - 1) / kSumBlock; }
+
+// The thread's share of [0, n): its whole blocks. Every loop over the free
+// nodes uses it, so that a thread reads back what it wrote in another.
+inline std::pair<std::int64_t, std::int64_t> block_share(const Team& team, std::int64_t n) {
+  const auto [b0, b1] = team.split(sum_blocks(n));
+  return {std::min(n, b0 * kSumBlock), std::min(n, b1 * kSumBlock)};
+}
 
 // The same with g(i0, i1, acc) adding the terms of a whole block [i0, i1).
 template <class G>
@@ -118,10 +125,10 @@ inline const double* flat(const std::vector<V>& v) {
 // Velocity vectors are stored compactly over the free nodes `free[q]`.
 //
 // Threads. The history (the vectors) is shared, each thread writing its
-// share (Team::split); the scalar bookkeeping (which slot, how many
-// differences, gamma) is kept by every thread in its own `State` and updated
-// identically from the same shared sums, so the threads agree without a
-// barrier. Loops over the free nodes and over the rows split the same
+// share (its blocks of free nodes, block_share, and its rows); the scalar
+// bookkeeping (which slot, how many differences, gamma) is kept by every
+// thread in its own `State` and updated identically from the same shared
+// sums, so the threads agree without a barrier. Loops over the free nodes and over the rows split the same
 // ranges as the solver's, so a thread reads back what it wrote itself.
 template <int D>
 class AndersonMixer {
@@ -153,18 +160,19 @@ class AndersonMixer {
   // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
   // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2. Called by
   // every thread of the solver's parallel region (or serially), each with
-  // its own state `st`; own_rows(f) calls f(j0, j1) on each range of rows
-  // the thread updates in the sweeps. Leaves p holding x_{k+1} and
-  // u(x_{k+1}), and u_before = u(x_{k+1}) at the free nodes, ready for the
-  // next sweep. Ends without a barrier: the thread has written its own rows
-  // and its share of the free nodes (Team::split), which is what the caller
+  // its own state `st`; own_rows(f) calls f(j0, j1, pos) on each range of
+  // rows the thread updates in the sweeps, pos numbering its rows
+  // consecutively (the order in which the history of the rows is stored).
+  // Leaves p holding x_{k+1} and u(x_{k+1}), and u_before = u(x_{k+1}) at
+  // the free nodes, ready for the next sweep. Ends without a barrier: the thread has written its own rows
+  // and its share of the free nodes (block_share), which is what the caller
   // may read back before its next barrier.
   template <class OwnRows>
   void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
            std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
            const OwnRows& own_rows, State& st) const {
     const std::int64_t nf = static_cast<std::int64_t>(free.size());
-    const auto [q0, q1] = team.split(nf);
+    const auto [q0, q1] = block_share(team, nf);
     if (m_ <= 0) {
       for (std::int64_t q = q0; q < q1; ++q) u_before[q] = p.velocity[free[q]];
       return;
@@ -189,8 +197,6 @@ class AndersonMixer {
     // stored; k > 0 implies one was). The older entries do not change and are
     // kept in st.gram. Each block goes by chunks of kChunk nodes, the sums
     // right after the differences, while they are in the first-level cache.
-    // (The loop's barrier also orders these writes before the combination
-    // below, which splits the free nodes differently.)
     const double* x[kMaxDepth];
     for (int a = 0; a < k; ++a) x[a] = flat(dF_[idx[a]]);
     deterministic_block_sums(
@@ -224,7 +230,7 @@ class AndersonMixer {
       combine = false;
     }
     const double* gamma = st.gamma;
-    // The thread's free nodes (the solver's split): u(x_{k+1}), also kept as
+    // The thread's free nodes (the blocks it summed): u(x_{k+1}), also kept as
     // the next sweep's u_before.
     for (std::int64_t q = q0; q < q1; ++q) {
       Vec<D> u = p.velocity[free[q]];
@@ -241,15 +247,19 @@ class AndersonMixer {
     for (int a = 0; a < k; ++a) dl[a] = flat(dGl_[idx[a]]);
     double* new_dl = flat(dGl_[slot]);
     double* prev = flat(gl_prev_);
-    own_rows([&](int j0, int j1) {
-      const std::int64_t i0 = std::int64_t(j0) * SD, i1 = std::int64_t(j1) * SD;
-      if (record)
-        for (std::int64_t i = i0; i < i1; ++i) new_dl[i] = lambda[i] - prev[i];
-      std::copy(lambda + i0, lambda + i1, prev + i0);
+    own_rows([&](int j0, int j1, int pos) {
+      const std::int64_t i0 = std::int64_t(j0) * SD, n = std::int64_t(j1 - j0) * SD;
+      double* l = lambda + i0;
+      double* pr = prev + std::int64_t(pos) * SD;
+      if (record) {
+        double* nd = new_dl + std::int64_t(pos) * SD;
+        for (std::int64_t i = 0; i < n; ++i) nd[i] = l[i] - pr[i];
+      }
+      std::copy(l, l + n, pr);
       if (combine)
         for (int a = 0; a < k; ++a) {
-          const double g = gamma[a], *d = dl[a];
-          for (std::int64_t i = i0; i < i1; ++i) lambda[i] -= g * d[i];
+          const double g = gamma[a], *d = dl[a] + std::int64_t(pos) * SD;
+          for (std::int64_t i = 0; i < n; ++i) l[i] -= g * d[i];
         }
     });
   }

@@ -338,7 +338,8 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   // barrier. Barriers are kept to those the data need (the copy of u before
   // the colours, one per colour, one per sum): every thread takes the same
   // decisions from the same shared sums, and loops over the free nodes use
-  // one split, so a thread reads back its own writes.
+  // one split (the blocks of the sums), so a thread reads back its own
+  // writes.
   std::vector<double> partial(sum_blocks(nf) * 2, 0.0);
   int iterations = 0;
   double residual = 0.0;
@@ -354,18 +355,31 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
 #pragma omp single
     barrier.set_size(omp_get_num_threads());
     const Team team{omp_get_thread_num(), omp_get_num_threads(), &barrier};
-    const auto [q0, q1] = team.split(nf);
-    // f(j0, j1) on each range of the rows this thread updates in a sweep:
-    // its share of each colour's rows before first_body_row, and the bodies'
-    // rows on the first thread. Loops over rows outside the sweep take the
-    // same ranges, so that a row stays in its thread's cache.
+    const auto [q0, q1] = solver_detail::block_share(team, nf);
+    // f(j0, j1, pos) on each range of the rows this thread updates in a
+    // sweep: its share of each colour's rows before first_body_row, and the
+    // bodies' rows on the first thread. Loops over rows outside the sweep take
+    // the same ranges, so that a row stays in its thread's cache; pos numbers
+    // the rows so that each thread's are consecutive (the mixer stores its
+    // history of the rows in that order, read in one stream per thread).
+    int own_base = 0;  // rows of the threads before this one
+    for (int c = 0; c < ncol; ++c) {
+      const int begin = p.colour_start[c], end = p.colour_start[c + 1];
+      const int split = std::clamp(p.first_body_row, begin, end);
+      own_base += team.split(begin, split).first - begin + (team.rank > 0 ? end - split : 0);
+    }
     const auto own_rows = [&](const auto& f) {
+      int pos = own_base;
       for (int c = 0; c < ncol; ++c) {
         const int begin = p.colour_start[c], end = p.colour_start[c + 1];
         const int split = std::clamp(p.first_body_row, begin, end);
         const auto [c0, c1] = team.split(begin, split);
-        if (c0 < c1) f(c0, c1);
-        if (team.rank == 0 && split < end) f(split, end);
+        if (c0 < c1) f(c0, c1, pos);
+        pos += c1 - c0;
+        if (team.rank == 0 && split < end) {
+          f(split, end, pos);
+          pos += end - split;
+        }
       }
     };
     typename AndersonMixer<D>::State mix_state;
@@ -421,7 +435,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           team.sync();
           allocated = true;
         }
-        own_rows([&](int j0, int j1) {
+        own_rows([&](int j0, int j1, int) {
           for (int j = j0; j < j1; ++j) {
             best_lambda[j] = p.lambda[j];
             best_state[j] = p.state[j];
@@ -435,7 +449,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     if (my_residual > tolerance && best < my_residual) {
       // Stopped at the cap on a worse iterate: go back to the best one.
       team.sync();
-      own_rows([&](int j0, int j1) {
+      own_rows([&](int j0, int j1, int) {
         for (int j = j0; j < j1; ++j) {
           p.lambda[j] = best_lambda[j];
           p.state[j] = best_state[j];
