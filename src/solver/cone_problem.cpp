@@ -393,30 +393,37 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     barrier.set_size(omp_get_num_threads());
     const Team team{omp_get_thread_num(), omp_get_num_threads(), &barrier};
     const auto [q0, q1] = solver_detail::block_share(team, nf);
-    // f(j0, j1, pos) on each range of the rows this thread updates in a
-    // sweep: its share of each colour's rows before first_body_row, and the
-    // bodies' rows on the first thread. Loops over rows outside the sweep take
-    // the same ranges, so that a row stays in its thread's cache; pos numbers
-    // the rows so that each thread's are consecutive (the mixer stores its
-    // history of the rows in that order, read in one stream per thread).
-    int own_base = 0;  // rows of the threads before this one
-    for (int c = 0; c < ncol; ++c) {
+    // This thread's rows of colour c: [c0, c1), its share of those before
+    // first_body_row, which the team updates in parallel, and [b0, b1), the
+    // bodies' rows, which the first thread updates in order after them
+    // (cone_problem.hpp; b0 = b1 on the other threads).
+    struct Share {
+      int c0, c1, b0, b1;
+    };
+    const auto share = [&](int c) {
       const int begin = p.colour_start[c], end = p.colour_start[c + 1];
       const int split = std::clamp(p.first_body_row, begin, end);
-      own_base += team.split(begin, split).first - begin + (team.rank > 0 ? end - split : 0);
+      const auto [c0, c1] = team.split(begin, split);
+      return Share{c0, c1, split, team.rank == 0 ? end : split};
+    };
+    // f(j0, j1, pos) on each range of the rows this thread updates in a
+    // sweep. Loops over rows outside the sweep take the same ranges, so that
+    // a row stays in its thread's cache; pos numbers the rows so that each
+    // thread's are consecutive (the mixer stores its history of the rows in
+    // that order, read in one stream per thread).
+    int own_base = 0;  // rows of the threads before this one
+    for (int c = 0; c < ncol; ++c) {
+      const Share sh = share(c);
+      own_base += sh.c0 - p.colour_start[c] + (team.rank > 0 ? p.colour_start[c + 1] - sh.b0 : 0);
     }
     const auto own_rows = [&](const auto& f) {
       int pos = own_base;
       for (int c = 0; c < ncol; ++c) {
-        const int begin = p.colour_start[c], end = p.colour_start[c + 1];
-        const int split = std::clamp(p.first_body_row, begin, end);
-        const auto [c0, c1] = team.split(begin, split);
-        if (c0 < c1) f(c0, c1, pos);
-        pos += c1 - c0;
-        if (team.rank == 0 && split < end) {
-          f(split, end, pos);
-          pos += end - split;
-        }
+        const Share sh = share(c);
+        if (sh.c0 < sh.c1) f(sh.c0, sh.c1, pos);
+        pos += sh.c1 - sh.c0;
+        if (sh.b0 < sh.b1) f(sh.b0, sh.b1, pos);
+        pos += sh.b1 - sh.b0;
       }
     };
     typename AndersonMixer<D>::State mix_state;
@@ -431,15 +438,11 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     for (int it = 1; it <= max_iterations; ++it) {
       team.sync();
       for (int c = 0; c < ncol; ++c) {
-        // Rows before first_body_row in parallel, the bodies' rows after
-        // them in order on one thread (cone_problem.hpp).
-        const int begin = p.colour_start[c], end = p.colour_start[c + 1];
-        const int split = std::clamp(p.first_body_row, begin, end);
-        const auto [c0, c1] = team.split(begin, split);
-        update_rows<D>(p, c0, c1, queue);
+        const Share sh = share(c);
+        update_rows<D>(p, sh.c0, sh.c1, queue);
         team.sync();
-        if (split < end) {
-          if (team.rank == 0) update_rows<D>(p, split, end, queue);
+        if (sh.b0 < p.colour_start[c + 1]) {  // the colour has bodies' rows
+          update_rows<D>(p, sh.b0, sh.b1, queue);
           team.sync();
         }
       }
