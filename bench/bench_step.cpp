@@ -3,10 +3,17 @@
 // Counters: per step, the split into transfer / assembly / solve / advection
 // (seconds), Gauss-Seidel sweeps, nanoseconds per particle per step and per
 // stress row per sweep; for whole runs, wall seconds per simulated second.
+// CoreRoundTrip and SpinBarrier time what two threads pay to share data on
+// the machine, which sets how much a second thread helps the solve.
 #include <benchmark/benchmark.h>
 
+#include <atomic>
+#include <chrono>
 #include <string>
+#include <thread>
 #include <vector>
+
+#include "solver/team.hpp"
 
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
@@ -84,16 +91,70 @@ void Bed3DPaperSize(benchmark::State& st) {
                                      "sand.0.max=[1.25,0.25,0.3125]"}),
                 0.1);
 }
+// The 2D collapse at the resolutions. Second argument: the seeding,
+// 0 the regular lattice and k > 0 grains jittered by 0.3 with seed k (the
+// sweep count depends on it: docs/benchmarks.md).
+std::vector<std::string> seeding(const benchmark::State& st, std::vector<std::string> overrides) {
+  if (st.range(1) > 0) {
+    overrides.push_back("sand.0.jitter=0.3");
+    overrides.push_back("seed=" + std::to_string(st.range(1)));
+  }
+  return overrides;
+}
 void Collapse2DSecond10mm(benchmark::State& st) {
   time_simulated_second<2>(
-      st, scene(st, "collapse2d.toml", {"grid.resolution=[100,25]", "sand.0.particles_per_cell=2"}));
+      st, scene(st, "collapse2d.toml",
+                seeding(st, {"grid.resolution=[100,25]", "sand.0.particles_per_cell=2"})));
 }
 void Collapse2DSecond5mm(benchmark::State& st) {
   time_simulated_second<2>(
-      st, scene(st, "collapse2d.toml", {"grid.resolution=[200,50]", "sand.0.particles_per_cell=2"}));
+      st, scene(st, "collapse2d.toml",
+                seeding(st, {"grid.resolution=[200,50]", "sand.0.particles_per_cell=2"})));
 }
 void Collapse2DSecond12mm(benchmark::State& st) {
-  time_simulated_second<2>(st, scene(st, "collapse2d.toml", {}));
+  time_simulated_second<2>(st, scene(st, "collapse2d.toml", seeding(st, {})));
+}
+
+// Two threads handing a flag back and forth: the time for a cache line
+// written by one core to be read by the other and answered.
+void CoreRoundTrip(benchmark::State& state) {
+  constexpr int kTrips = 100000;
+  alignas(64) std::atomic<int> flag{0};
+  for (auto _ : state) {
+    flag.store(0);
+    std::thread other([&] {
+      for (int i = 0; i < kTrips; ++i) {
+        while (flag.load(std::memory_order_acquire) != 2 * i + 1) {
+        }
+        flag.store(2 * i + 2, std::memory_order_release);
+      }
+    });
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < kTrips; ++i) {
+      flag.store(2 * i + 1, std::memory_order_release);
+      while (flag.load(std::memory_order_acquire) != 2 * i + 2) {
+      }
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    other.join();
+    state.counters["round_trip_ns"] = 1e9 * s / kTrips;
+  }
+}
+
+// The solver's spin barrier (solver/team.hpp) with two threads.
+void SpinBarrier2(benchmark::State& state) {
+  constexpr int kWaits = 100000;
+  for (auto _ : state) {
+    SpinBarrier barrier(2);
+    std::thread other([&] {
+      for (int i = 0; i < kWaits; ++i) barrier.wait();
+    });
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < kWaits; ++i) barrier.wait();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    other.join();
+    state.counters["barrier_ns"] = 1e9 * s / kWaits;
+  }
 }
 void Silo2D(benchmark::State& st) { time_steps<2>(st, scene(st, "silo2d.toml", {}), 0.3); }
 
@@ -101,9 +162,15 @@ BENCHMARK(Collapse3D)->Unit(benchmark::kMillisecond)->Iterations(20)->Arg(0)->Ar
 BENCHMARK(Collapse3DFine)->Unit(benchmark::kMillisecond)->Iterations(10)->Arg(0)->Arg(5);
 BENCHMARK(Bed3DPaperSize)->Unit(benchmark::kMillisecond)->Iterations(10)->Arg(0)->Arg(5);
 BENCHMARK(Silo2D)->Unit(benchmark::kMillisecond)->Iterations(30)->Arg(0)->Arg(5);
-BENCHMARK(Collapse2DSecond12mm)->Unit(benchmark::kSecond)->Iterations(1)->Arg(0)->Arg(5);
-BENCHMARK(Collapse2DSecond10mm)->Unit(benchmark::kSecond)->Iterations(1)->Arg(0)->Arg(5);
-BENCHMARK(Collapse2DSecond5mm)->Unit(benchmark::kSecond)->Iterations(1)->Arg(0)->Arg(5);
+// {Anderson depth, seeding}: plain and accelerated on the lattice, then the
+// three jittered seedings of docs/benchmarks.md.
+#define SABLIER_SEEDINGS ->Args({0, 0})->Args({5, 0})->Args({5, 1})->Args({5, 2})->Args({5, 3})
+BENCHMARK(Collapse2DSecond12mm)->Unit(benchmark::kSecond)->Iterations(1) SABLIER_SEEDINGS;
+BENCHMARK(Collapse2DSecond10mm)->Unit(benchmark::kSecond)->Iterations(1) SABLIER_SEEDINGS;
+BENCHMARK(Collapse2DSecond5mm)->Unit(benchmark::kSecond)->Iterations(1) SABLIER_SEEDINGS;
+#undef SABLIER_SEEDINGS
+BENCHMARK(CoreRoundTrip)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(SpinBarrier2)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
 }  // namespace sablier
