@@ -81,8 +81,8 @@ inline void weighted_dot_lanes(const double* w, const double* const* x, int k, c
   }
 }
 
-// Adds lanes sy[a], sz[a] (pairwise) and then the scalar terms of the doubles
-// [i0, i1) past the last quad to xy[2a] and xz[2a + 1] of acc.
+// Adds lanes sy[a] and sz[a] (pairwise), then the scalar terms of the
+// doubles [i0, i1) past the last quad, to acc[2a] and acc[2a + 1].
 inline void weighted_dot_finish(const double* w, const double* const* x, int k, const double* y,
                                 const double* z, std::int64_t i0, std::int64_t i1,
                                 const simd::Vd* sy, const simd::Vd* sz, double* acc) {
@@ -128,8 +128,9 @@ inline const double* flat(const std::vector<V>& v) {
 // share (its blocks of free nodes, block_share, and its rows); the scalar
 // bookkeeping (which slot, how many differences, gamma) is kept by every
 // thread in its own `State` and updated identically from the same shared
-// sums, so the threads agree without a barrier. Loops over the free nodes and over the rows split the same
-// ranges as the solver's, so a thread reads back what it wrote itself.
+// sums, so the threads agree without a barrier. Loops over the free nodes
+// and over the rows split the same ranges as the solver's, so a thread reads
+// back what it wrote itself.
 template <int D>
 class AndersonMixer {
  public:
@@ -164,9 +165,10 @@ class AndersonMixer {
   // rows the thread updates in the sweeps, pos numbering its rows
   // consecutively (the order in which the history of the rows is stored).
   // Leaves p holding x_{k+1} and u(x_{k+1}), and u_before = u(x_{k+1}) at
-  // the free nodes, ready for the next sweep. Ends without a barrier: the thread has written its own rows
-  // and its share of the free nodes (block_share), which is what the caller
-  // may read back before its next barrier.
+  // the free nodes, ready for the next sweep. Ends without a barrier: the
+  // thread has written its own rows and its share of the free nodes
+  // (block_share), which is what the caller may read back before its next
+  // barrier.
   template <class OwnRows>
   void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
            std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
@@ -197,7 +199,7 @@ class AndersonMixer {
     // stored; k > 0 implies one was). The older entries do not change and are
     // kept in st.gram. Each block goes by chunks of kChunk nodes, the sums
     // right after the differences, while they are in the first-level cache.
-    const double* x[kMaxDepth];
+    const double* x[kMaxDepth] = {};
     for (int a = 0; a < k; ++a) x[a] = flat(dF_[idx[a]]);
     deterministic_block_sums(
         team, nf, 2 * k, partial_, st.sums, [&](std::int64_t b0, std::int64_t b1, double* acc) {
@@ -217,10 +219,12 @@ class AndersonMixer {
               f_prev_[q] = f;
               gu_prev_[q] = u;
             }
-            weighted_dot_lanes(flat(w), x, k, flat(f_prev_), x[0], c0 * D,
-                               std::min(c1 * D, quads), sy, sz);
+            if (k > 0)
+              weighted_dot_lanes(flat(w), x, k, flat(f_prev_), x[0], c0 * D,
+                                 std::min(c1 * D, quads), sy, sz);
           }
-          weighted_dot_finish(flat(w), x, k, flat(f_prev_), x[0], quads, b1 * D, sy, sz, acc);
+          if (k > 0)
+            weighted_dot_finish(flat(w), x, k, flat(f_prev_), x[0], quads, b1 * D, sy, sz, acc);
         });
     for (int a = 0; a < k; ++a)
       st.gram[idx[a]][idx[0]] = st.gram[idx[0]][idx[a]] = st.sums[2 * a + 1];
