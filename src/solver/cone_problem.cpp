@@ -123,6 +123,16 @@ inline Vec<D> contact_force(const ConeProblem<D>& p, int j, const SymVec<D>& dl)
   return from_sym<D>(dl) * p.coupling[j].col(ConeProblem<D>::NS / 2);
 }
 
+// u_j += M_j^{-1} Lambda g_jj: a contact row's stress moves its own node only
+// (its coupling is zero elsewhere). Its stencil is not visited: the rows of a
+// ball against a wall or another solid sit on a ghost node beyond the grid's
+// last layer, whose stencil leaves the velocity storage.
+template <int D>
+inline void scatter_contact(ConeProblem<D>& p, int j, const SymVec<D>& dl) {
+  const std::int64_t i = p.node[j];
+  p.velocity[i] += p.inv_mass[i].cwiseProduct(contact_force<D>(p, j, dl));
+}
+
 // One exact local update of contact row j (cone_problem.hpp): the Coulomb
 // problem y = W r + b, y = F^T u the node's velocity in the contact frame.
 template <int D>
@@ -150,7 +160,7 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Vec<D> t = F.template rightCols<D - 1>() * dr.template tail<D - 1>();
   const Mat<D> dL = dr[0] * Mat<D>::Identity() + t * n.transpose() + n * t.transpose();
   const SymVec<D> dl = to_sym<D>(dL);
-  scatter_stress<D>(p, j, dl);
+  scatter_contact<D>(p, j, dl);
   if (body >= 0 || other >= 0) {
     const Vec<D> f = contact_force<D>(p, j, dl);
     if (body >= 0) push_body<D>(p, body, p.contact_arm[c], f);
@@ -261,8 +271,10 @@ template <int D>
 void assemble_delassus(ConeProblem<D>& p) {
   constexpr int SD = sym_size(D);
   const int n = p.rows();
+  // The sand rows' blocks (contact rows get theirs below).
+  const int sand = std::min(p.first_contact, n);
 #pragma omp parallel for schedule(static)
-  for (int j = 0; j < n; ++j) {
+  for (int j = 0; j < sand; ++j) {
     const auto& g = p.coupling[j];
     const Vec<D>* im = p.inv_mass.data() + p.node[j];
     SymMat<D> W = SymMat<D>::Zero();
@@ -320,14 +332,19 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
     const int end = std::min(p.colour_start[c + 1], body_rows);
 #pragma omp parallel for schedule(static)
     for (int j = p.colour_start[c]; j < end; ++j) {
-      if (p.lambda[j].squaredNorm() > 0.0) scatter_stress<D>(p, j, p.lambda[j]);
+      if (!(p.lambda[j].squaredNorm() > 0.0)) continue;
+      if (j < p.first_contact) {
+        scatter_stress<D>(p, j, p.lambda[j]);
+      } else {
+        scatter_contact<D>(p, j, p.lambda[j]);
+      }
     }
   }
   // The bodies' rows, in order on one thread: they are not coloured (they
   // share their bodies' velocities, and two of them may share stencil nodes).
   for (int j = body_rows; j < p.rows(); ++j) {
     if (!(p.lambda[j].squaredNorm() > 0.0)) continue;
-    scatter_stress<D>(p, j, p.lambda[j]);
+    scatter_contact<D>(p, j, p.lambda[j]);
     const int c = j - p.first_contact;
     const Vec<D> f = contact_force<D>(p, j, p.lambda[j]);
     if (p.contact_body[c] >= 0) push_body<D>(p, p.contact_body[c], p.contact_arm[c], f);
