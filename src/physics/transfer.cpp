@@ -78,9 +78,9 @@ void Simulation<D>::transfer_to_grid(double dt) {
   }
   // Obstacle rows (METHOD.md section 3): every sand node within one cell of
   // an obstacle gets a second row pairing the obstacle's contact stress with
-  // gamma_RB = sym(u n^T) / h. Such a row touches only its own node, but
-  // Gauss-Seidel writes a row's whole stencil, so they take the same 3^d
-  // colours, after the sand's.
+  // gamma_RB = sym(u n^T) / h. Such a row touches only its own node (the
+  // solver writes only that node); they take the same 3^d colours, after
+  // the sand's, which fixes where their updates fall among the sand rows'.
   const double h = grid_.h();
   const int sand_rows = rows;
   // Where the obstacles are at the start of the step: a moving plane only
