@@ -389,11 +389,11 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   // 2 threads), and a 2D sweep of a few hundred rows takes tens of us. The
   // loops split their ranges themselves and synchronise with the team's spin
   // barrier (solver/team.hpp), not libgomp's, which makes a system call per
-  // barrier. Barriers are kept to those the data need (the copy of u before
-  // the colours, one per colour, one per sum): every thread takes the same
-  // decisions from the same shared sums, and loops over the free nodes use
-  // one split (the blocks of the sums), so a thread reads back its own
-  // writes.
+  // barrier. Barriers are kept to those the data need (one before the
+  // colours, after the mixing's writes, one per colour, one per sum): every
+  // thread takes the same decisions from the same shared sums, and loops
+  // over the free nodes use one split (the blocks of the sums), so a thread
+  // reads back its own writes.
   std::vector<double> partial(sum_blocks(nf) * 2, 0.0);
   int iterations = 0;
   double residual = 0.0;
