@@ -164,11 +164,12 @@ BENCHMARK(Bed3DPaperSize)->Unit(benchmark::kMillisecond)->Iterations(10)->Arg(0)
 BENCHMARK(Silo2D)->Unit(benchmark::kMillisecond)->Iterations(30)->Arg(0)->Arg(5);
 // {Anderson depth, seeding}: plain and accelerated on the lattice, then the
 // three jittered seedings of docs/benchmarks.md.
-#define SABLIER_SEEDINGS ->Args({0, 0})->Args({5, 0})->Args({5, 1})->Args({5, 2})->Args({5, 3})
-BENCHMARK(Collapse2DSecond12mm)->Unit(benchmark::kSecond)->Iterations(1) SABLIER_SEEDINGS;
-BENCHMARK(Collapse2DSecond10mm)->Unit(benchmark::kSecond)->Iterations(1) SABLIER_SEEDINGS;
-BENCHMARK(Collapse2DSecond5mm)->Unit(benchmark::kSecond)->Iterations(1) SABLIER_SEEDINGS;
-#undef SABLIER_SEEDINGS
+void seedings(benchmark::internal::Benchmark* b) {
+  b->Args({0, 0})->Args({5, 0})->Args({5, 1})->Args({5, 2})->Args({5, 3});
+}
+BENCHMARK(Collapse2DSecond12mm)->Unit(benchmark::kSecond)->Iterations(1)->Apply(seedings);
+BENCHMARK(Collapse2DSecond10mm)->Unit(benchmark::kSecond)->Iterations(1)->Apply(seedings);
+BENCHMARK(Collapse2DSecond5mm)->Unit(benchmark::kSecond)->Iterations(1)->Apply(seedings);
 BENCHMARK(CoreRoundTrip)->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(SpinBarrier2)->Unit(benchmark::kMillisecond)->Iterations(5);
 
