@@ -123,14 +123,15 @@ inline Vec<D> contact_force(const ConeProblem<D>& p, int j, const SymVec<D>& dl)
   return from_sym<D>(dl) * p.coupling[j].col(ConeProblem<D>::NS / 2);
 }
 
-// u_j += M_j^{-1} Lambda g_jj: a contact row's stress moves its own node only
-// (its coupling is zero elsewhere). Its stencil is not visited: the rows of a
-// ball against a wall or another solid sit on a ghost node beyond the grid's
-// last layer, whose stencil leaves the velocity storage.
+// u_j += M_j^{-1} f for the force f = Lambda g_jj of contact row j
+// (contact_force): a contact row's stress moves its own node only (its
+// coupling is zero elsewhere). Its stencil is not visited: the rows of a ball
+// against a wall or another solid sit on a ghost node beyond the grid's last
+// layer, whose stencil leaves the velocity storage.
 template <int D>
-inline void scatter_contact(ConeProblem<D>& p, int j, const SymVec<D>& dl) {
+inline void move_contact_node(ConeProblem<D>& p, int j, const Vec<D>& f) {
   const std::int64_t i = p.node[j];
-  p.velocity[i] += p.inv_mass[i].cwiseProduct(contact_force<D>(p, j, dl));
+  p.velocity[i] += p.inv_mass[i].cwiseProduct(f);
 }
 
 // One exact local update of contact row j (cone_problem.hpp): the Coulomb
@@ -160,12 +161,10 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Vec<D> t = F.template rightCols<D - 1>() * dr.template tail<D - 1>();
   const Mat<D> dL = dr[0] * Mat<D>::Identity() + t * n.transpose() + n * t.transpose();
   const SymVec<D> dl = to_sym<D>(dL);
-  scatter_contact<D>(p, j, dl);
-  if (body >= 0 || other >= 0) {
-    const Vec<D> f = contact_force<D>(p, j, dl);
-    if (body >= 0) push_body<D>(p, body, p.contact_arm[c], f);
-    if (other >= 0) push_body<D>(p, other, p.contact_other_arm[c], -f);
-  }
+  const Vec<D> f = contact_force<D>(p, j, dl);
+  move_contact_node<D>(p, j, f);
+  if (body >= 0) push_body<D>(p, body, p.contact_arm[c], f);
+  if (other >= 0) push_body<D>(p, other, p.contact_other_arm[c], -f);
   p.lambda[j] += dl;
 }
 
@@ -336,7 +335,7 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
       if (j < p.first_contact) {
         scatter_stress<D>(p, j, p.lambda[j]);
       } else {
-        scatter_contact<D>(p, j, p.lambda[j]);
+        move_contact_node<D>(p, j, contact_force<D>(p, j, p.lambda[j]));
       }
     }
   }
@@ -344,9 +343,9 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
   // share their bodies' velocities, and two of them may share stencil nodes).
   for (int j = body_rows; j < p.rows(); ++j) {
     if (!(p.lambda[j].squaredNorm() > 0.0)) continue;
-    scatter_contact<D>(p, j, p.lambda[j]);
-    const int c = j - p.first_contact;
     const Vec<D> f = contact_force<D>(p, j, p.lambda[j]);
+    move_contact_node<D>(p, j, f);
+    const int c = j - p.first_contact;
     if (p.contact_body[c] >= 0) push_body<D>(p, p.contact_body[c], p.contact_arm[c], f);
     if (p.other_body(c) >= 0) push_body<D>(p, p.other_body(c), p.contact_other_arm[c], -f);
   }
