@@ -3,7 +3,7 @@
 // Counters: per step, the split into transfer / assembly / solve / advection
 // (seconds), Gauss-Seidel sweeps, nanoseconds per particle per step and per
 // stress row per sweep; for whole runs, wall seconds per simulated second.
-// CoreRoundTrip and SpinBarrier time what two threads pay to share data on
+// CoreRoundTrip and SpinBarrier2 time what two threads pay to share data on
 // the machine, which sets how much a second thread helps the solve.
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -116,15 +116,16 @@ void Collapse2DSecond12mm(benchmark::State& st) {
   time_simulated_second<2>(st, scene(st, "collapse2d.toml", seeding(st, {})));
 }
 
-// Two threads handing a flag back and forth: the time for a cache line
-// written by one core to be read by the other and answered.
-// Both spin while they wait: with one core to share they would take minutes.
+// The two benchmarks below spin while they wait: with one core to share
+// they would take minutes, so they skip.
 bool two_cores(benchmark::State& state) {
   if (omp_get_num_procs() >= 2) return true;
   state.SkipWithError("needs two cores (the threads spin)");
   return false;
 }
 
+// Two threads handing a flag back and forth: the time for a cache line
+// written by one core to be read by the other and answered.
 void CoreRoundTrip(benchmark::State& state) {
   if (!two_cores(state)) return;
   constexpr int kTrips = 100000;
