@@ -76,11 +76,11 @@ TEST(Cli, RefusesToMixRuns) {
   EXPECT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall + " --overwrite").code, 0);
 }
 
-// (solver.rows_per_thread = 0: the solve too runs on both threads, which a
-// scene this small would not otherwise use.)
+// (solver.zone_rows = 100: the sand is swept in several zones, so the solve
+// too runs on both threads, which a scene this small would not otherwise use.)
 TEST(Cli, SameResultWhateverTheThreadCount) {
   const fs::path a = test::fresh_dir("cli_t1"), b = test::fresh_dir("cli_t2");
-  const std::string every = " --set solver.rows_per_thread=0";
+  const std::string every = " --set solver.zone_rows=100";
   ASSERT_EQ(sablier("run " + scene_file("collapse2d.toml") + " --out " + a.string() +
                     " --threads 1" + kSmall + every)
                 .code,

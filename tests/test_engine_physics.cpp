@@ -337,7 +337,7 @@ TEST(Physics, SolverReportsTheCap) {
 // solve on every thread, which a scene this small would not otherwise use).
 TEST(Physics, DeterministicWithJitterAndThreads) {
   const SceneConfig s =
-      scene("collapse2d.toml", {"sand.0.jitter=0.8", "seed=7", "solver.rows_per_thread=0"});
+      scene("collapse2d.toml", {"sand.0.jitter=0.8", "seed=7", "solver.zone_rows=100"});
   std::vector<std::vector<Vec<2>>> results;
   for (int threads : {1, 2, 1}) {
     omp_set_num_threads(threads);

@@ -173,7 +173,7 @@ TEST(Obstacles, ConveyorBeltDragsABlockAtCoulombRate) {
 // Contact rows are coloured like the sand's: the same result, bit for bit,
 // whatever the thread count (the solve on every thread).
 TEST(Obstacles, DeterministicWhateverTheThreads) {
-  const SceneConfig s = scene("obstacle2d.toml", {"solver.rows_per_thread=0"});
+  const SceneConfig s = scene("obstacle2d.toml", {"solver.zone_rows=100"});
   std::vector<std::vector<Vec<2>>> positions;
   std::vector<Vec3d> forces;
   for (int threads : {1, 2}) {

@@ -284,7 +284,7 @@ TEST(SceneFile, RandomDoublesRoundTripExactly) {
       x->material.viscosity = std::ldexp(unit(rng), 200);
       x->material.mu_i->grain_diameter = 1e-3 * unit(rng) + 1e-12;
       x->solver.tolerance = unit(rng) * 0.5 + 1e-17;
-      x->solver.rows_per_thread = static_cast<int>(5000 * unit(rng));
+      x->solver.zone_rows = static_cast<int>(5000 * unit(rng));
       x->sand[0].jitter = unit(rng);
       x->sand[0].radius = 0.1 * unit(rng) + 0.02;  // holds particles: not an error
       x->sand[0].velocity[1] = (unit(rng) - 0.5) * 1e5;

@@ -104,7 +104,7 @@ TEST(Solver, CappedSolveReturnsItsBestLateIterate2D) {
   for (auto& l : q.lambda) l.setZero();
   std::vector<double> history;
   const int cap = 400;
-  const SolveReport rep = solve_gauss_seidel(q, 1e-9, cap, 0, 0, &history);
+  const SolveReport rep = solve_gauss_seidel(q, 1e-9, cap, 0, &history);
   ASSERT_TRUE(rep.hit_cap);
   ASSERT_EQ(rep.iterations, cap);
   ASSERT_EQ(static_cast<int>(history.size()), cap);

@@ -554,8 +554,8 @@ std::string file(const fs::path& p) { return read_file(p.string()); }
 
 TEST(Sources, EmissionIsTheSameWithOneAndTwoThreads) {
   const fs::path a = temp_dir("threads1"), b = temp_dir("threads2");
-  ASSERT_EQ(sablier(pile_args(a, " --threads 1 --set solver.rows_per_thread=0")).code, 0);
-  ASSERT_EQ(sablier(pile_args(b, " --threads 2 --set solver.rows_per_thread=0")).code, 0);
+  ASSERT_EQ(sablier(pile_args(a, " --threads 1 --set solver.zone_rows=100")).code, 0);
+  ASSERT_EQ(sablier(pile_args(b, " --threads 2 --set solver.zone_rows=100")).code, 0);
   for (int f = 1; f <= 6; ++f) {
     const std::string name = "frames/particles_0000" + std::to_string(f) + ".vtp";
     EXPECT_EQ(file(a / name), file(b / name)) << name;

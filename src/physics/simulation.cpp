@@ -260,7 +260,7 @@ StepInfo Simulation<D>::step(double dt) {
 
   t0 = Clock::now();
   info.solve = solve_gauss_seidel(problem_, scene_.solver.tolerance, scene_.solver.max_iterations,
-                                  scene_.solver.anderson, scene_.solver.rows_per_thread);
+                                  scene_.solver.anderson);
   info.timings.solve = seconds_since(t0);
   // Work the decompaction of over-full nodes may do: 2 dt sum max(0,
   // -lambda_N k_j) over k_j < 0. Nodes with room (k_j > 0) do no work:

@@ -8,6 +8,7 @@
 
 #include "physics/shape.hpp"
 #include "physics/simulation.hpp"
+#include "solver/zones.hpp"
 
 namespace sablier {
 
@@ -51,31 +52,33 @@ void Simulation<D>::transfer_to_grid(double dt) {
   std::fill(node_mass_.begin(), node_mass_.end(), 0.0);
   std::fill(node_momentum_.begin(), node_momentum_.end(), Vec<D>::Zero());
 
-  // Stress rows: the nodes of cells holding particles, grouped by colour
-  // (node coordinates mod 3): rows of one colour have disjoint stencils.
+  // Stress rows: the nodes of cells holding particles, laid out in zones and
+  // colours (solver/zones.hpp): rows of one run have disjoint stencils.
   const auto corner = grid_.corner_offsets();
   std::fill(row_of_node_.begin(), row_of_node_.end(), -1);
-  std::vector<std::vector<std::int64_t>> by_colour(ipow(3, D));
+  std::vector<std::int64_t> nodes;
+  std::vector<std::array<int, D>> coords;
   for (std::int64_t c : active_cells_) {
     const std::int64_t base = grid_.cell_base_node(grid_.cell_coords(c));
     for (int k = 0; k < NC; ++k) {
       const std::int64_t node = base + corner[k];
       if (row_of_node_[node] != -1) continue;
       row_of_node_[node] = -2;
-      const auto nc = grid_.node_coords(node);
-      int colour = 0;
-      for (int a = D - 1; a >= 0; --a) colour = colour * 3 + nc[a] % 3;
-      by_colour[colour].push_back(node);
+      nodes.push_back(node);
+      coords.push_back(grid_.node_coords(node));
     }
   }
+  const ZoneLayout layout = zone_layout<D>(coords, nodes, scene_.solver.zone_rows);
+  constexpr int kColours = ipow(3, D);
+  const int sand_runs = static_cast<int>(layout.run_start.size()) - 1;
+  std::vector<std::vector<std::int64_t>> by_colour(sand_runs);  // the runs' nodes
+  for (int r = 0; r < sand_runs; ++r)
+    for (int i = layout.run_start[r]; i < layout.run_start[r + 1]; ++i)
+      by_colour[r].push_back(nodes[layout.order[i]]);
   ConeProblem<D>& P = problem_;
-  P.colour_start.assign(1, 0);
-  int rows = 0;
-  for (auto& list : by_colour) {
-    std::sort(list.begin(), list.end());
-    rows += static_cast<int>(list.size());
-    P.colour_start.push_back(rows);
-  }
+  P.zones = layout.zones;
+  P.colour_start = layout.run_start;
+  int rows = layout.run_start.back();
   // Obstacle rows (METHOD.md section 3): every sand node within one cell of
   // an obstacle gets a second row pairing the obstacle's contact stress with
   // gamma_RB = sym(u n^T) / h. Such a row touches only its own node (the
@@ -102,10 +105,10 @@ void Simulation<D>::transfer_to_grid(double dt) {
   std::vector<Contact> body_contacts;
   std::vector<double> solid(sand_rows, 0.0);
   if (!obstacles.empty()) {
-    obstacle_by_colour.resize(by_colour.size());
+    obstacle_by_colour.resize(kColours);
     int r = 0;
-    for (std::size_t colour = 0; colour < by_colour.size(); ++colour)
-      for (std::int64_t node : by_colour[colour]) {
+    for (int run = 0; run < sand_runs; ++run)
+      for (std::int64_t node : by_colour[run]) {
         const auto nc = grid_.node_coords(node);
         Vec<D> x, n;
         for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
@@ -113,7 +116,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const double dist = obstacle_distance(obstacles, x, &n, &which);
         solid[r++] = solid_fraction(dist, h);
         if (dist >= h) continue;
-        (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[colour])
+        (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[run % kColours])
             .push_back({node, n, which});
       }
     // A rigid ball within a cell of one of the box's walls gets a row against

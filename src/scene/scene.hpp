@@ -63,9 +63,10 @@ struct SolverConfig {
   double tolerance = 1e-5;  // relative velocity change of the last sweep (docs/method.md)
   int max_iterations = 2000;
   int anderson = 5;  // Anderson acceleration depth; 0 = plain Gauss-Seidel
-  // The solve runs on one thread per this many stress rows, at most the run's
-  // thread count; 0 = always every thread (cone_problem.hpp).
-  int rows_per_thread = 1000;
+  // The sand's stress rows are swept in zones of about this many rows, one
+  // thread per zone (solver/zones.hpp); 0 = one zone. It sets the order of
+  // the Gauss-Seidel updates, so results depend on it, not on the threads.
+  int zone_rows = 500;
 };
 
 struct TimeConfig {

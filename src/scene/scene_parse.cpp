@@ -90,7 +90,7 @@ const std::vector<Field<SolverConfig>> kSolverFields{
     real("tolerance", &SolverConfig::tolerance, open(0, 1)),
     whole("max_iterations", &SolverConfig::max_iterations, closed(1, kInf)),
     whole("anderson", &SolverConfig::anderson, closed(0, 16)),
-    whole("rows_per_thread", &SolverConfig::rows_per_thread, closed(0, kInf)),
+    whole("zone_rows", &SolverConfig::zone_rows, closed(0, kInf)),
 };
 const std::vector<Field<SandConfig>> kSandFields{
     whole("particles_per_cell", &SandConfig::particles_per_cell, closed(1, 8)),

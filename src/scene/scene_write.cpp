@@ -145,10 +145,10 @@ std::string scene_to_toml(const SceneConfig& s) {
       num(m.cohesion_decay));
   if (m.mu_i) out += mu_i_line(*m.mu_i);
   out += fmt::format(
-      "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nrows_per_thread = {}\n\n"
+      "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nzone_rows = {}\n\n"
       "[boundary]\n",
       num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson,
-      s.solver.rows_per_thread);
+      s.solver.zone_rows);
   for (int f = 0; f < 2 * d; ++f)
     out += fmt::format("{} = \"{}\"\n", faces[f], boundary_name(s.boundary.faces[f]));
   for (const Opening& o : s.boundary.openings)

@@ -16,46 +16,56 @@
 namespace sablier {
 namespace solver_detail {
 
-// K sums at once, each over i in [0, n) in fixed blocks of 1024 and then the
-// block sums in order: the same floating-point result for any thread count.
-// f(i, acc) adds its K terms to acc[0..K). Called by every thread of the
-// team (each fills its share of the blocks, block_share; the barrier
-// publishes the block sums, which every thread then adds up itself in the
-// same order, so all threads hold the same `out` without a further barrier).
-// `partial` is the caller's buffer; the caller must not refill it before a
-// barrier (every thread reads it here). `out` is the calling thread's own.
+// The free nodes' blocks: block b is the free nodes [start[b], start[b+1]),
+// of at most kSumBlock nodes, fixed by the problem alone (not by the team).
+// Sums over the free nodes go block by block and then add the block sums
+// in order, so their floating-point result does not depend on the thread
+// count. Thread `rank` owns blocks [first[rank], first[rank + 1]): every loop
+// over the free nodes takes the same ones, so that a thread reads back what
+// it wrote in another, and the solver chooses them to hold the velocities
+// its sweeps write (cone_problem.cpp).
 constexpr std::int64_t kSumBlock = 1024;
 
-inline std::int64_t sum_blocks(std::int64_t n) { return (n + kSumBlock - 1) / kSumBlock; }
+struct SumBlocks {
+  std::vector<std::int64_t> start{0};  // first free node of each block, then the count
+  std::vector<int> first;              // first block of each thread, then the block count
 
-// The thread's share of [0, n): its whole blocks. Every loop over the free
-// nodes uses it, so that a thread reads back what it wrote in another.
-inline std::pair<std::int64_t, std::int64_t> block_share(const Team& team, std::int64_t n) {
-  const auto [b0, b1] = team.split(sum_blocks(n));
-  return {std::min(n, b0 * kSumBlock), std::min(n, b1 * kSumBlock)};
-}
+  int count() const { return static_cast<int>(start.size()) - 1; }
+  // Blocks for the free nodes [begin, end) (after the previous ones).
+  void add_segment(std::int64_t end) {
+    for (std::int64_t b = start.back(); b < end;) start.push_back(b = std::min(end, b + kSumBlock));
+  }
+  std::pair<std::int64_t, std::int64_t> share(const Team& team) const {
+    return {start[first[team.rank]], start[first[team.rank + 1]]};
+  }
+};
 
-// The same with g(i0, i1, acc) adding the terms of a whole block [i0, i1).
+// K sums at once over the free nodes, g(i0, i1, acc) adding the terms of the
+// block [i0, i1) to acc[0..K). Called by every thread of the team (each
+// fills its blocks; the barrier publishes the block sums, which every thread
+// then adds up itself in the same order, so all threads hold the same `out`
+// without a further barrier). `partial` is the caller's buffer of
+// K blocks.count() doubles; the caller must not refill it before a barrier
+// (every thread reads it here). `out` is the calling thread's own.
 template <class G>
-void deterministic_block_sums(const Team& team, std::int64_t n, int K, std::vector<double>& partial,
-                              double* out, const G& g) {
-  const std::int64_t nb = sum_blocks(n);
-  const auto [b0, b1] = team.split(nb);
-  for (std::int64_t b = b0; b < b1; ++b) {
-    double* acc = partial.data() + b * K;
+void deterministic_block_sums(const Team& team, const SumBlocks& blocks, int K,
+                              std::vector<double>& partial, double* out, const G& g) {
+  for (int b = blocks.first[team.rank]; b < blocks.first[team.rank + 1]; ++b) {
+    double* acc = partial.data() + std::int64_t(b) * K;
     std::fill(acc, acc + K, 0.0);
-    g(b * kSumBlock, std::min(n, (b + 1) * kSumBlock), acc);
+    g(blocks.start[b], blocks.start[b + 1], acc);
   }
   team.sync();
   std::fill(out, out + K, 0.0);
-  for (std::int64_t b = 0; b < nb; ++b)
-    for (int k = 0; k < K; ++k) out[k] += partial[b * K + k];
+  for (int b = 0; b < blocks.count(); ++b)
+    for (int k = 0; k < K; ++k) out[k] += partial[std::int64_t(b) * K + k];
 }
 
+// The same with f(i, acc) adding the terms of free node i.
 template <class F>
-void deterministic_sums(const Team& team, std::int64_t n, int K, std::vector<double>& partial,
-                        double* out, const F& f) {
-  deterministic_block_sums(team, n, K, partial, out,
+void deterministic_sums(const Team& team, const SumBlocks& blocks, int K,
+                        std::vector<double>& partial, double* out, const F& f) {
+  deterministic_block_sums(team, blocks, K, partial, out,
                            [&](std::int64_t i0, std::int64_t i1, double* acc) {
                              for (std::int64_t i = i0; i < i1; ++i) f(i, acc);
                            });
@@ -125,7 +135,7 @@ inline const double* flat(const std::vector<V>& v) {
 // Velocity vectors are stored compactly over the free nodes `free[q]`.
 //
 // Threads. The history (the vectors) is shared, each thread writing its
-// share (its blocks of free nodes, block_share, and its rows); the scalar
+// share (its blocks of free nodes, SumBlocks, and its rows); the scalar
 // bookkeeping (which slot, how many differences, gamma) is kept by every
 // thread in its own `State` and updated identically from the same shared
 // sums, so the threads agree without a barrier. Loops over the free nodes
@@ -147,15 +157,17 @@ class AndersonMixer {
     double gamma[kMaxDepth] = {};
   };
 
-  AndersonMixer(int depth, int rows, std::int64_t nfree) : m_(std::min(depth, kMaxDepth)) {
+  AndersonMixer(int depth, int rows, const SumBlocks& blocks)
+      : m_(std::min(depth, kMaxDepth)), blocks_(&blocks) {
     if (m_ <= 0) return;
+    const std::int64_t nfree = blocks.start.back();
     dF_.assign(m_, std::vector<Vec<D>>(nfree, Vec<D>::Zero()));
     dGu_.assign(m_, std::vector<Vec<D>>(nfree, Vec<D>::Zero()));
     dGl_.assign(m_, std::vector<SymVec<D>>(rows, SymVec<D>::Zero()));
     f_prev_.assign(nfree, Vec<D>::Zero());
     gu_prev_.assign(nfree, Vec<D>::Zero());
     gl_prev_.assign(rows, SymVec<D>::Zero());
-    partial_.assign(sum_blocks(nfree) * kMaxSums, 0.0);
+    partial_.assign(std::int64_t(blocks.count()) * kMaxSums, 0.0);
   }
 
   // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
@@ -167,14 +179,13 @@ class AndersonMixer {
   // Leaves p holding x_{k+1} and u(x_{k+1}), and u_before = u(x_{k+1}) at
   // the free nodes, ready for the next sweep. Ends without a barrier: the
   // thread has written its own rows and its share of the free nodes
-  // (block_share), which is what the caller may read back before its next
+  // (SumBlocks::share), which is what the caller may read back before its next
   // barrier.
   template <class OwnRows>
   void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
            std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
            const OwnRows& own_rows, State& st) const {
-    const std::int64_t nf = static_cast<std::int64_t>(free.size());
-    const auto [q0, q1] = block_share(team, nf);
+    const auto [q0, q1] = blocks_->share(team);
     if (m_ <= 0) {
       for (std::int64_t q = q0; q < q1; ++q) u_before[q] = p.velocity[free[q]];
       return;
@@ -202,7 +213,7 @@ class AndersonMixer {
     const double* x[kMaxDepth] = {};
     for (int a = 0; a < k; ++a) x[a] = flat(dF_[idx[a]]);
     deterministic_block_sums(
-        team, nf, 2 * k, partial_, st.sums, [&](std::int64_t b0, std::int64_t b1, double* acc) {
+        team, *blocks_, 2 * k, partial_, st.sums, [&](std::int64_t b0, std::int64_t b1, double* acc) {
           simd::Vd sy[kMaxDepth], sz[kMaxDepth];
           for (int a = 0; a < k; ++a) sy[a] = sz[a] = simd::splat(0.0);
           // The doubles [b0 D, quads) go by quads, the rest one by one.
@@ -299,6 +310,7 @@ class AndersonMixer {
   // that chunks start on a quad).
   static constexpr std::int64_t kChunk = 64;
   int m_ = 0;
+  const SumBlocks* blocks_;
   // The shared history, written in work-shared loops (mutable: mix is const
   // so that its scalar state can only live in the threads' State).
   mutable std::vector<double> partial_;

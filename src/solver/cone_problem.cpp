@@ -12,13 +12,17 @@
 
 #include "solver/anderson.hpp"
 #include "solver/slide_batch.hpp"
+#include "solver/sweep_order.hpp"
 #include "solver/team.hpp"
 
 namespace sablier {
 
 using solver_detail::AndersonMixer;
 using solver_detail::deterministic_sums;
-using solver_detail::sum_blocks;
+using solver_detail::free_velocities;
+using solver_detail::SumBlocks;
+using solver_detail::SweepOrder;
+using solver_detail::team_size;
 
 template <int D>
 void ConeProblem<D>::resize_rows(int n) {
@@ -223,13 +227,15 @@ inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymV
   }
 }
 
-// Exact local updates of rows [begin, end), all of one colour (rows of one
+// Exact local updates of rows [begin, end), all of one run (rows of one
 // colour have disjoint stencils, so their order does not matter). Sand rows
 // go eight at a time: first every row's local problem, a loop without
 // branches whose loads and arithmetic overlap from row to row, then each
 // row's case, those that separate or stick updated at once and those that
-// slide queued for a batched slide solve (flushed when full and at the end).
-// Contact rows (own colours) are updated one by one, in order.
+// slide queued for a batched slide solve, done when the queue is full and
+// by the caller at the end of each group of independent rows
+// (SweepOrder::walk). Contact rows (own colours) are updated one by one, in
+// order, with the queue empty.
 template <int D>
 inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue) {
   constexpr int SD = sym_size(D);
@@ -260,9 +266,10 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
       if (queue.batch.full()) queue.flush(p);
     }
   }
-  queue.flush(p);
   for (int j = std::max(begin, p.first_contact); j < end; ++j) update_contact_row<D>(p, j);
 }
+
+
 
 }  // namespace
 
@@ -325,54 +332,50 @@ void assemble_delassus(ConeProblem<D>& p) {
 
 template <int D>
 void apply_stress_to_velocity(ConeProblem<D>& p) {
-  const int ncol = static_cast<int>(p.colour_start.size()) - 1;
-  const int body_rows = std::min(p.first_body_row, p.rows());
-  for (int c = 0; c < ncol; ++c) {
-    const int end = std::min(p.colour_start[c + 1], body_rows);
-#pragma omp parallel for schedule(static)
-    for (int j = p.colour_start[c]; j < end; ++j) {
-      if (!(p.lambda[j].squaredNorm() > 0.0)) continue;
-      if (j < p.first_contact) {
-        scatter_stress<D>(p, j, p.lambda[j]);
-      } else {
-        move_contact_node<D>(p, j, contact_force<D>(p, j, p.lambda[j]));
-      }
+  // In the sweep's order and on its team (SweepOrder), so that each velocity
+  // sums its stresses in one order whatever the thread count.
+  const auto move = [&p](int j) {
+    if (!(p.lambda[j].squaredNorm() > 0.0)) return;
+    if (j < p.first_contact) {
+      scatter_stress<D>(p, j, p.lambda[j]);
+      return;
     }
-  }
-  // The bodies' rows, in order on one thread: they are not coloured (they
-  // share their bodies' velocities, and two of them may share stencil nodes).
-  for (int j = body_rows; j < p.rows(); ++j) {
-    if (!(p.lambda[j].squaredNorm() > 0.0)) continue;
     const Vec<D> f = contact_force<D>(p, j, p.lambda[j]);
     move_contact_node<D>(p, j, f);
+    if (j < p.first_body_row) return;
     const int c = j - p.first_contact;
     if (p.contact_body[c] >= 0) push_body<D>(p, p.contact_body[c], p.contact_arm[c], f);
     if (p.other_body(c) >= 0) push_body<D>(p, p.other_body(c), p.contact_other_arm[c], -f);
+  };
+  SpinBarrier barrier;
+#pragma omp parallel num_threads(team_size(p))
+  {
+#pragma omp single
+    barrier.set_size(omp_get_num_threads());
+    const SweepOrder<D> order(p, omp_get_num_threads());
+    order.walk(
+        omp_get_thread_num(),
+        [&](int j0, int j1) {
+          for (int j = j0; j < j1; ++j) move(j);
+        },
+        [] {}, [&] { barrier.wait(); });
   }
-}
-
-// The solve's team size (cone_problem.hpp).
-inline int solver_team_size(int rows, int rows_per_thread) {
-  const int most = std::max(1, omp_get_max_threads());
-  if (rows_per_thread <= 0) return most;
-  return std::clamp(rows / rows_per_thread, 1, most);
 }
 
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
-                               int anderson_depth, int rows_per_thread,
-                               std::vector<double>* history) {
+                               int anderson_depth, std::vector<double>* history) {
   SolveReport report;
   const int n = p.rows();
   if (n == 0) return report;
-  const int ncol = static_cast<int>(p.colour_start.size()) - 1;
-  const std::int64_t nv = static_cast<std::int64_t>(p.velocity.size());
   // The free velocity nodes (some component with inv_mass > 0): the only ones
-  // stresses move. Their kinetic-energy weights w = 1 / inv_mass per free
+  // stresses move, in the order of the threads that write them
+  // (free_velocities). Their kinetic-energy weights w = 1 / inv_mass per free
   // component (0 on constrained ones) define |a|_M^2 = sum_q a_q . w_q a_q.
   std::vector<std::int64_t> free;
-  for (std::int64_t i = 0; i < nv; ++i)
-    if (p.inv_mass[i].maxCoeff() > 0.0) free.push_back(i);
+  SumBlocks blocks;
+  std::vector<int> segment_block;
+  free_velocities(p, free, blocks, segment_block);
   const std::int64_t nf = static_cast<std::int64_t>(free.size());
   std::vector<Vec<D>> weight(nf), u_free(nf), u_prev(nf);
   for (std::int64_t q = 0; q < nf; ++q) {
@@ -382,7 +385,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   }
   std::fill(p.beta.begin(), p.beta.end(), 0.0);
   apply_stress_to_velocity(p);  // warm start
-  AndersonMixer<D> mixer(anderson_depth, n, nf);
+  AndersonMixer<D> mixer(anderson_depth, n, blocks);
   // One parallel region for the whole solve: a fork and join per colour
   // would cost more than a barrier (measured: about 2 us against 0.4 us on
   // 2 threads), and a 2D sweep of a few hundred rows takes tens of us. The
@@ -393,7 +396,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   // thread takes the same decisions from the same shared sums, and loops
   // over the free nodes use one split (the blocks of the sums), so a thread
   // reads back its own writes.
-  std::vector<double> partial(sum_blocks(nf) * 2, 0.0);
+  std::vector<double> partial(std::int64_t(blocks.count()) * 2, 0.0);
   int iterations = 0;
   double residual = 0.0;
   if (history) history->clear();
@@ -403,44 +406,34 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::vector<DPCase> best_state;
   std::vector<Vec<D>> best_u;
   SpinBarrier barrier;
-#pragma omp parallel num_threads(solver_team_size(n, rows_per_thread))
+#pragma omp parallel num_threads(team_size(p))
   {
+    const SweepOrder<D> order(p, omp_get_num_threads());
 #pragma omp single
-    barrier.set_size(omp_get_num_threads());
-    const Team team{omp_get_thread_num(), omp_get_num_threads(), &barrier};
-    const auto [q0, q1] = solver_detail::block_share(team, nf);
-    // This thread's rows of colour c: [c0, c1), its share of those before
-    // first_body_row, which the team updates in parallel, and [b0, b1), the
-    // bodies' rows, which the first thread updates in order after them
-    // (cone_problem.hpp; b0 = b1 on the other threads).
-    struct Share {
-      int c0, c1, b0, b1;
-    };
-    const auto share = [&](int c) {
-      const int begin = p.colour_start[c], end = p.colour_start[c + 1];
-      const int split = std::clamp(p.first_body_row, begin, end);
-      const auto [c0, c1] = team.split(begin, split);
-      return Share{c0, c1, split, team.rank == 0 ? end : split};
-    };
+    {
+      barrier.set_size(order.size);
+      // Each thread's free nodes: those of its zones and the separators after them.
+      blocks.first.resize(order.size + 1);
+      for (int k = 0; k < order.size; ++k) blocks.first[k] = segment_block[2 * order.zones_of(k).first];
+      blocks.first[order.size] = blocks.count();
+    }
+    const Team team{omp_get_thread_num(), order.size, &barrier};
+    const auto [q0, q1] = blocks.share(team);
     // f(j0, j1, pos) on each range of the rows this thread updates in a
     // sweep. Loops over rows outside the sweep take the same ranges, so that
     // a row stays in its thread's cache; pos numbers the rows so that each
     // thread's are consecutive (the mixer stores its history of the rows in
     // that order, read in one stream per thread).
-    int own_base = 0;  // rows of the threads before this one
-    for (int c = 0; c < ncol; ++c) {
-      const Share sh = share(c);
-      own_base += sh.c0 - p.colour_start[c] + (team.rank > 0 ? p.colour_start[c + 1] - sh.b0 : 0);
-    }
+    const int own_base = order.rows_before(team.rank);
     const auto own_rows = [&](const auto& f) {
       int pos = own_base;
-      for (int c = 0; c < ncol; ++c) {
-        const Share sh = share(c);
-        if (sh.c0 < sh.c1) f(sh.c0, sh.c1, pos);
-        pos += sh.c1 - sh.c0;
-        if (sh.b0 < sh.b1) f(sh.b0, sh.b1, pos);
-        pos += sh.b1 - sh.b0;
-      }
+      order.walk(
+          team.rank,
+          [&](int j0, int j1) {
+            f(j0, j1, pos);
+            pos += j1 - j0;
+          },
+          [] {}, [] {});
     };
     typename AndersonMixer<D>::State mix_state;
     SlideQueue<D> queue;
@@ -453,18 +446,12 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = p.velocity[free[q]];
     for (int it = 1; it <= max_iterations; ++it) {
       team.sync();
-      for (int c = 0; c < ncol; ++c) {
-        const Share sh = share(c);
-        update_rows<D>(p, sh.c0, sh.c1, queue);
-        team.sync();
-        if (sh.b0 < p.colour_start[c + 1]) {  // the colour has bodies' rows
-          update_rows<D>(p, sh.b0, sh.b1, queue);
-          team.sync();
-        }
-      }
+      order.walk(
+          team.rank, [&](int j0, int j1) { update_rows<D>(p, j0, j1, queue); },
+          [&] { queue.flush(p); }, [&] { team.sync(); });
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
       double sums[2];
-      deterministic_sums(team, nf, 2, partial, sums, [&](std::int64_t q, double* acc) {
+      deterministic_sums(team, blocks, 2, partial, sums, [&](std::int64_t q, double* acc) {
         const Vec<D>& u = p.velocity[free[q]];
         const Vec<D> a = u - u_prev[q], b = u - u_free[q];
         acc[0] += a.dot(weight[q].cwiseProduct(a));
@@ -544,7 +531,7 @@ SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j) {
   template struct ConeProblem<D>;                                                    \
   template void assemble_delassus<D>(ConeProblem<D>&);                               \
   template void apply_stress_to_velocity<D>(ConeProblem<D>&);                        \
-  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int, int, \
+  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int,      \
                                              std::vector<double>*);                  \
   template SymVec<D> row_strain_rate<D>(const ConeProblem<D>&, int);
 SABLIER_INSTANTIATE(2)

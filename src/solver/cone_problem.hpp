@@ -51,9 +51,16 @@ struct ConeProblem {
   std::vector<Vec<D>> inv_mass;  // dt / (rho m_i) on free components, else 0
   std::array<std::int64_t, NS> stencil{};  // velocity index offsets of a row's stencil
 
-  // Stress rows, grouped by colour: rows [colour_start[c], colour_start[c+1])
-  // have pairwise disjoint stencils and are updated in parallel.
+  // Stress rows, in runs of rows with pairwise disjoint stencils (rows of
+  // one colour: node coordinates mod 3), rows [colour_start[c],
+  // colour_start[c+1]). The sand's rows come first, laid out in zones
+  // (solver/zones.hpp): 2 zones - 1 units (the zones, then the separators
+  // between them) of 3^d runs each, one per colour, which a sweep updates
+  // one unit per thread, each in its own order; the contact rows' colours
+  // follow, each shared by the team. With zones = 1 the sand's rows are one
+  // unit: 3^d colours swept in order.
   std::vector<int> colour_start;
+  int zones = 1;
   std::vector<std::int64_t> node;     // velocity index of the row's centre node
   std::vector<Coupling> coupling;     // g_ji, columns in stencil order
   std::vector<double> volume;         // V_j, m^3
@@ -145,19 +152,14 @@ void apply_stress_to_velocity(ConeProblem<D>& p);
 // such iterate follows a plain sweep, so it is feasible, and its residual is
 // the one reported). Solves that stall wander (docs/benchmarks.md, "Steps at
 // the cap"); the last iterate may sit on a spike.
-// The sweeps run on one OpenMP thread per `rows_per_thread` rows, at most
-// omp_get_max_threads() (0: always that many). Each colour ends with a
-// barrier and hands velocities to the other threads, so a small problem is
-// faster on fewer threads. Measured on 2 threads against 1 (2026-12-02,
-// 2-core guest): 2D collapse 43 against 33 us per sweep at 390 rows and 56
-// against 48 at 565; silo2d level at 1,530; 2D collapse at 2,100 rows 1.0-
-// 1.13 times faster; 3D collapse at 3,410 rows 1.2-1.4 times faster. The
-// result does not depend on it.
+// The sweeps run on one OpenMP thread per zone, at most
+// omp_get_max_threads(); a thread waits for the others only before the
+// separators between its zones and theirs, after them, and around each
+// colour of contact rows. The result does not depend on the thread count.
 // `history`, when given, receives every sweep's residual.
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
-                               int anderson_depth = 0, int rows_per_thread = 0,
-                               std::vector<double>* history = nullptr);
+                               int anderson_depth = 0, std::vector<double>* history = nullptr);
 
 // gamma_j (1/s) from the current velocities, for diagnostics and tests.
 template <int D>
