@@ -7,7 +7,7 @@
 // Z zones separated by separators two node layers thick: rows of different
 // zones are then at least 3 layers apart, and so are rows of different
 // separators (each zone between two separators is at least 2 layers
-// thick). A sweep updates every zone, each on one thread and in its own
+// thick; we keep them at least kMinZoneLayers). A sweep updates every zone, each on one thread and in its own
 // colour order (the rows of one colour of one zone are independent, which
 // the batched slide solves need), then every separator likewise. Only rows
 // of a zone and of the separators on either side of it touch the same
@@ -42,10 +42,17 @@ struct ZoneLayout {
 
 namespace zone_detail {
 
+// The thinnest zone, in node layers. Two would keep separators apart, but
+// the separators' rows (two layers each) would then be a large share of
+// the rows, and whole layers of 3D rows are too coarse to balance thin
+// zones (3D collapse, 17 layers in 4 zones of 2-4 layers: one thread got
+// 14% more rows than the other).
+constexpr int kMinZoneLayers = 4;
+
 // First layer of each of the z - 1 separators over the layers' row counts
 // `count`, so that each zone with half of each separator beside it holds
 // about as many rows as the layers allow; false when the zones between them
-// would be thinner than they must be.
+// would be thinner than kMinZoneLayers.
 inline bool place_separators(const std::vector<int>& count, int z, std::vector<int>& cut) {
   const int layers = static_cast<int>(count.size());
   std::int64_t total = 0;
@@ -57,13 +64,13 @@ inline bool place_separators(const std::vector<int>& count, int z, std::vector<i
     const std::int64_t target = total * (s + 1) / z;
     // The separator's middle (after its first layer c) at the target.
     while (c < layers && before + count[c] < target) before += count[c++];
-    const int lowest = s == 0 ? 1 : cut[s - 1] + 4;  // zones >= 1 and 2 layers thick
+    const int lowest = s == 0 ? kMinZoneLayers : cut[s - 1] + 2 + kMinZoneLayers;
     if (c < lowest) {
       for (; c < lowest && c < layers; ++c) before += count[c];
     }
     cut[s] = c;
   }
-  return z == 1 || cut[z - 2] + 3 <= layers;  // the last zone >= 1 layer
+  return z == 1 || cut[z - 2] + 2 + kMinZoneLayers <= layers;
 }
 
 }  // namespace zone_detail
