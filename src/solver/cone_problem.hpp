@@ -54,11 +54,11 @@ struct ConeProblem {
   // Stress rows, in runs of rows with pairwise disjoint stencils (rows of
   // one colour: node coordinates mod 3), rows [colour_start[c],
   // colour_start[c+1]). The sand's rows come first, laid out in zones
-  // (solver/zones.hpp): zones + 3 (zones - 1) units (the zones, then each
-  // separator's two halves and middle) of 3^d runs each, one per colour,
-  // which a sweep updates one unit per thread, each in its own order; the
-  // contact rows' colours follow, each shared by the team. With zones = 1
-  // the sand's rows are one unit: 3^d colours swept in order.
+  // (solver/zones.hpp): 2 zones - 1 units (the zones, then the separators
+  // between them) of 3^d runs each, one per colour, which a sweep updates
+  // one unit per thread, each in its own order; the contact rows' colours
+  // follow, each shared by the team. With zones = 1 the sand's rows are one
+  // unit: 3^d colours swept in order.
   std::vector<int> colour_start;
   int zones = 1;
   std::vector<std::int64_t> node;     // velocity index of the row's centre node

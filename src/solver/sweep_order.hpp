@@ -25,36 +25,35 @@ int team_size(const ConeProblem<D>& p) {
 
 // A thread's part of the sweep order (solver/zones.hpp): the ranges of rows
 // it updates, in order, and where it waits for the team. Its zones, then
-// the separators between them (halves, then middles); after the team's
-// barrier, the first half of the separator between its zones and the next
-// thread's and the second half of the one below; after another, the middle
-// of the first; then its share of each colour of the contact rows, and the
-// bodies' rows on the first thread. Every thread count updates rows that
-// share a velocity in the same order, so results do not depend on it.
+// the separators between them; then, after the team's barrier, the
+// separators between its zones and the next thread's, either one thread
+// each or, when they hold many rows, shared colour by colour (a barrier per
+// colour, which costs less than the other threads waiting); then its share
+// of each colour of the contact rows, and the bodies' rows on the first
+// thread. Every thread count updates rows that share a velocity in the same
+// order, so results do not depend on it.
 template <int D>
 struct SweepOrder {
   static constexpr int NC = ConeProblem<D>::NS;  // runs (colours) per unit
+  // Fewer rows than this in the separators between threads: one thread each.
+  static constexpr int kSharedSeparatorRows = 200;
   const ConeProblem<D>& p;
-  int size;   // the team
-  int zones;  // Z
+  int size;             // the team
+  int zones;            // Z
+  bool share_separators = false;
 
   SweepOrder(const ConeProblem<D>& problem, int team)
-      : p(problem), size(team), zones(std::max(problem.zones, 1)) {}
+      : p(problem), size(team), zones(std::max(problem.zones, 1)) {
+    int rows = 0;
+    for (int k = 0; k + 1 < size; ++k) {
+      const int u = zones + zones_of(k).second - 1;
+      rows += p.colour_start[unit_start(u + 1)] - p.colour_start[unit_start(u)];
+    }
+    share_separators = rows >= kSharedSeparatorRows;
+  }
   Team as(int rank) const { return Team{rank, size, nullptr}; }
   std::pair<int, int> zones_of(int rank) const { return as(rank).split(0, zones); }
   static int unit_start(int u) { return u * NC; }
-  // Separator s's units (zones.hpp): first half, second half, middle.
-  int half(int s, int which) const { return zones + 3 * s + which; }
-  int middle(int s) const { return zones + 3 * s + 2; }
-  // The separator between thread k's zones and thread k + 1's.
-  int boundary(int k) const { return zones_of(k).second - 1; }
-  // The free velocities' segments (free_velocities) start with thread
-  // rank's at this one: zone z is segment 4 z, separator s's first half,
-  // middle and second half 4 s + 1, 4 s + 2 and 4 s + 3.
-  int first_segment(int rank) const {
-    const int z0 = zones_of(rank).first;
-    return z0 == 0 ? 0 : 4 * z0 - 1;
-  }
 
   // f(j0, j1) on rank's ranges of rows in sweep order; done() after each
   // group of ranges whose rows are independent (rows of one colour of the
@@ -63,36 +62,40 @@ struct SweepOrder {
   template <class F, class G, class W>
   void walk(int rank, const F& f, const G& done, const W& wait) const {
     const std::vector<int>& cs = p.colour_start;
-    // Colour by colour, the n pairwise independent units unit(0) ... unit(n - 1).
-    const auto colours = [&](int n, const auto& unit) {
-      for (int c = 0; c < NC; ++c) {
-        for (int i = 0; i < n; ++i) {
-          const int r = unit_start(unit(i)) + c;
-          if (cs[r] < cs[r + 1]) f(cs[r], cs[r + 1]);
-        }
-        done();
+    // Colour c of the n units unit(0) ... unit(n - 1) (pairwise
+    // independent), as one range split by count among the team if `shared`,
+    // else all of it.
+    const auto colour = [&](int c, int n, const auto& unit, bool shared) {
+      int total = 0;
+      for (int i = 0; i < n; ++i) total += cs[unit_start(unit(i)) + c + 1] - cs[unit_start(unit(i)) + c];
+      const auto [a, b] = shared ? as(rank).split(0, total) : std::pair<int, int>(0, total);
+      for (int i = 0, off = 0; i < n; ++i) {
+        const int r = unit_start(unit(i)) + c, len = cs[r + 1] - cs[r];
+        const int lo = std::max(a, off), hi = std::min(b, off + len);
+        if (lo < hi) f(cs[r] + lo - off, cs[r] + hi - off);
+        off += len;
       }
+      done();
     };
     const auto [z0, z1] = zones_of(rank);
-    const int inner = z1 - z0 - 1;  // separators between this thread's zones
-    colours(z1 - z0, [&](int i) { return z0 + i; });
-    colours(2 * inner, [&](int i) { return half(z0 + i / 2, i % 2); });
-    colours(inner, [&](int i) { return middle(z0 + i); });
+    for (int c = 0; c < NC; ++c) colour(c, z1 - z0, [&](int i) { return z0 + i; }, false);
+    for (int c = 0; c < NC; ++c) colour(c, z1 - z0 - 1, [&](int i) { return zones + z0 + i; }, false);
     wait();
-    if (size > 1) {
-      const bool above = rank + 1 < size, below = rank > 0;
-      if constexpr (D == 3) {  // 2D separators are all middle (zones.hpp)
-        colours(int(above) + int(below), [&](int i) {
-          return i == 0 && above ? half(boundary(rank), 0) : half(boundary(rank - 1), 1);
-        });
+    // The separators between threads: after each thread's last zone but the last.
+    const auto boundary = [&](int k) { return zones + zones_of(k).second - 1; };
+    if (size > 1 && !share_separators) {
+      if (rank + 1 < size)
+        for (int c = 0; c < NC; ++c) colour(c, 1, [&](int) { return boundary(rank); }, false);
+      wait();
+    } else if (size > 1) {
+      for (int c = 0; c < NC; ++c) {
+        colour(c, size - 1, boundary, true);
         wait();
       }
-      if (above) colours(1, [&](int) { return middle(boundary(rank)); });
-      wait();
     }
     // The contact rows' colours; the bodies' rows on the first thread.
     const int ncol = static_cast<int>(cs.size()) - 1;
-    for (int c = unit_start(zones + 3 * (zones - 1)); c < ncol; ++c) {
+    for (int c = unit_start(2 * zones - 1); c < ncol; ++c) {
       const int begin = cs[c], end = cs[c + 1];
       const int split = std::clamp(p.first_body_row, begin, end);
       const auto [c0, c1] = as(rank).split(begin, split);
@@ -116,12 +119,12 @@ struct SweepOrder {
 
 // The free velocity nodes (some component with inv_mass > 0) in the order of
 // the threads that write them, and their blocks for the sums (anderson.hpp):
-// the nodes of the rows of zone 0, separator 0 (first half, middle, second
-// half), zone 1, ... zone Z - 1, each segment's by node index and in its own
-// blocks (segment_block[s]: the first block of segment s,
-// SweepOrder::first_segment), then any other (the bodies' unknowns). A
-// thread's segments are then consecutive, and so are the velocities its
-// sweeps write: loops over free nodes hand few velocities between cores.
+// the nodes of the rows of zone 0, separator 0, zone 1, ... zone Z - 1, each
+// unit's by node index and in its own blocks (segment_block[s]: the first
+// block of the s-th), then any other (the bodies' unknowns). A thread's
+// zones and the separators after them are then consecutive, and so are the
+// velocities its sweeps write: loops over free nodes hand few velocities
+// between cores.
 template <int D>
 void free_velocities(const ConeProblem<D>& p, std::vector<std::int64_t>& free, SumBlocks& blocks,
                      std::vector<int>& segment_block) {
@@ -129,13 +132,11 @@ void free_velocities(const ConeProblem<D>& p, std::vector<std::int64_t>& free, S
   const std::int64_t nv = static_cast<std::int64_t>(p.velocity.size());
   const auto is_free = [&](std::int64_t i) { return p.inv_mass[i].maxCoeff() > 0.0; };
   const int zones = std::max(p.zones, 1);
-  const int segments = 4 * zones - 3;
   std::vector<char> seen(nv, 0);
   free.clear();
-  segment_block.assign(segments + 1, 0);
-  for (int s = 0; s < segments; ++s) {
-    const int z = s / 4, part = s % 4;  // part 0: zone z; 1, 2, 3: separator z
-    const int u = part == 0 ? z : zones + 3 * z + (part == 1 ? 0 : part == 2 ? 2 : 1);
+  segment_block.assign(2 * zones, 0);
+  for (int s = 0; s < 2 * zones - 1; ++s) {
+    const int u = s % 2 == 0 ? s / 2 : zones + s / 2;
     const std::size_t from = free.size();
     for (int j = p.colour_start[u * NC]; j < p.colour_start[(u + 1) * NC]; ++j) {
       const std::int64_t i = p.node[j];
@@ -147,11 +148,12 @@ void free_velocities(const ConeProblem<D>& p, std::vector<std::int64_t>& free, S
     segment_block[s] = blocks.count();
     blocks.add_segment(static_cast<std::int64_t>(free.size()));
   }
-  segment_block[segments] = blocks.count();
+  segment_block[2 * zones - 1] = blocks.count();
   for (std::int64_t i = 0; i < nv; ++i)
     if (!seen[i] && is_free(i)) free.push_back(i);
   blocks.add_segment(static_cast<std::int64_t>(free.size()));
 }
+
 
 }  // namespace solver_detail
 }  // namespace sablier

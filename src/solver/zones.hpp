@@ -6,19 +6,15 @@
 // differ by at most 2 on every axis. The rows are cut along one axis into
 // Z zones separated by separators two node layers thick: rows of different
 // zones are then at least 3 layers apart, and so are rows of different
-// separators (each zone between two separators is at least 2 layers thick;
-// we keep them at least kMinZoneLayers). Each separator is cut the same way
-// along a second axis into two halves and a middle two layers wide. A sweep
-// updates every zone, each on one thread and in its own colour order (the
-// rows of one colour of one zone are independent, which the batched slide
-// solves need), then the separators' halves, then their middles. Only rows
+// separators (each zone between two separators is at least 2 layers
+// thick; we keep them at least kMinZoneLayers). A sweep updates every zone, each on one thread and in its own
+// colour order (the rows of one colour of one zone are independent, which
+// the batched slide solves need), then every separator likewise. Only rows
 // of a zone and of the separators on either side of it touch the same
-// velocities, and of a separator's halves and its middle; the zones always
-// come before the separators and the halves before the middles, so every
-// thread count updates rows that share a velocity in the same order and
-// the result does not depend on it. Two threads whose zones meet at a
-// separator wait for each other before its halves (one each) and before
-// its middle.
+// velocities, and the separators always come after the zones: every thread
+// count updates rows that share a velocity in the same order, so the result
+// does not depend on it, and threads need to wait for each other only
+// before the separators between them.
 #pragma once
 
 #include <algorithm>
@@ -33,17 +29,15 @@ namespace sablier {
 struct ZoneLayout {
   // The input rows in sweep order, and runs of them of one colour: run r
   // is order[run_start[r] .. run_start[r + 1]) and has colour r % 3^d (the
-  // colour of ConeProblem: node coordinates mod 3). Every unit has its 3^d
-  // runs, empty or not: unit u is runs [u 3^d, (u + 1) 3^d). Units
-  // [0, zones) are the zones, along `axis` in increasing coordinate; then
-  // each separator s (between zones s and s + 1) is three units: its first
-  // half zones + 3 s, its second half zones + 3 s + 1 and its middle
-  // zones + 3 s + 2, cut along `across`.
+  // colour of ConeProblem: node coordinates mod 3). Every unit (a zone or a
+  // separator) has its 3^d runs, empty or not: unit u is runs
+  // [u 3^d, (u + 1) 3^d). Units [0, zones) are the zones, along `axis` in
+  // increasing coordinate, and [zones, 2 zones - 1) the separators, the
+  // separator zones + s lying between zones s and s + 1.
   std::vector<int> order;
   std::vector<int> run_start;
   int zones = 1;
-  int axis = 1;
-  int across = 0;
+  int axis = 0;
 };
 
 namespace zone_detail {
@@ -77,26 +71,6 @@ inline bool place_separators(const std::vector<int>& count, int z, std::vector<i
     cut[s] = c;
   }
   return z == 1 || cut[z - 2] + 2 + kMinZoneLayers <= layers;
-}
-
-// The first of the two middle layers of a separator whose layers hold
-// `count` rows: the rows before it and those after the second as even as
-// the layers allow.
-inline int middle_layer(const std::vector<int>& count) {
-  const int layers = static_cast<int>(count.size());
-  std::vector<std::int64_t> before(layers + 1, 0);
-  for (int c = 0; c < layers; ++c) before[c + 1] = before[c] + count[c];
-  int best = 0;
-  std::int64_t gap = -1;
-  for (int m = 0; m < layers; ++m) {
-    const std::int64_t after = before[layers] - before[std::min(layers, m + 2)];
-    const std::int64_t d = before[m] > after ? before[m] - after : after - before[m];
-    if (gap < 0 || d < gap) {
-      gap = d;
-      best = m;
-    }
-  }
-  return best;
 }
 
 }  // namespace zone_detail
@@ -136,43 +110,27 @@ ZoneLayout zone_layout(const std::vector<std::array<int, D>>& coords,
   layout.zones = z;
   layout.axis = axis;
 
-  // Each row's zone or separator.
-  std::vector<int> unit(n);
-  for (int j = 0; j < n; ++j) {
-    const int c = coords[j][axis] - lo[axis];
-    unit[j] = z - 1;
-    for (int s = 0; s < z - 1; ++s) {
-      if (c < cut[s]) {
-        unit[j] = s;
-        break;
-      }
-      if (c <= cut[s] + 1) {
-        unit[j] = -1 - s;  // separator s, split below
-        break;
-      }
-    }
-  }
-  // Each separator's halves and middle along `across`: the rows before
-  // layer m, those after m + 1 and the two layers m, m + 1 between them,
-  // m chosen so that the halves hold about as many rows.
-  const int across = D == 2 ? 0 : 3 - axis;
-  layout.across = across;
-  std::vector<std::vector<int>> width(z - 1, std::vector<int>(hi[across] - lo[across] + 1, 0));
-  for (int j = 0; j < n; ++j)
-    if (unit[j] < 0) ++width[-1 - unit[j]][coords[j][across] - lo[across]];
-  std::vector<int> middle(z - 1);
-  for (int s = 0; s < z - 1; ++s) middle[s] = zone_detail::middle_layer(width[s]);
-  const int units = z + 3 * (z - 1);
+  // Each row's unit and colour, then a counting sort by (unit, colour) and
+  // the key within each run.
+  const int units = 2 * z - 1;
   std::vector<int> run(n);
   std::vector<int> size(units * NC + 1, 0);
   for (int j = 0; j < n; ++j) {
-    if (unit[j] < 0) {
-      const int s = -1 - unit[j], c = coords[j][across] - lo[across];
-      unit[j] = z + 3 * s + (D == 2 ? 2 : c < middle[s] ? 0 : c > middle[s] + 1 ? 1 : 2);
+    const int c = coords[j][axis] - lo[axis];
+    int unit = z - 1;
+    for (int s = 0; s < z - 1; ++s) {
+      if (c < cut[s]) {
+        unit = s;
+        break;
+      }
+      if (c <= cut[s] + 1) {
+        unit = z + s;
+        break;
+      }
     }
     int colour = 0;
     for (int a = D - 1; a >= 0; --a) colour = colour * 3 + coords[j][a] % 3;
-    run[j] = unit[j] * NC + colour;
+    run[j] = unit * NC + colour;
     ++size[run[j] + 1];
   }
   for (int r = 0; r < units * NC; ++r) size[r + 1] += size[r];
