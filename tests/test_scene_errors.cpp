@@ -139,8 +139,8 @@ std::vector<BadScene> time_material_solver_errors() {
        "bad.toml:10: time.frames: 3000000000 is too large", "frames <= 2147483647"},
       {"anderson too deep", with("[solver]\nanderson = 17\n"), "bad.toml:10: solver.anderson",
        "0 <= anderson <= 16"},
-      {"zone rows negative", with("[solver]\nzone_rows = -1\n"),
-       "bad.toml:10: solver.zone_rows", "zone_rows >= 0"},
+      {"zone rows negative", with("[solver]\nzone_rows = -1\n"), "bad.toml:10: solver.zone_rows",
+       "zone_rows >= 0"},
       {"iterations float", with("[solver]\nmax_iterations = 1e3\n"),
        "bad.toml:10: solver.max_iterations: expected an integer", ""},
   };

@@ -147,8 +147,7 @@ std::string scene_to_toml(const SceneConfig& s) {
   out += fmt::format(
       "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nzone_rows = {}\n\n"
       "[boundary]\n",
-      num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson,
-      s.solver.zone_rows);
+      num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, s.solver.zone_rows);
   for (int f = 0; f < 2 * d; ++f)
     out += fmt::format("{} = \"{}\"\n", faces[f], boundary_name(s.boundary.faces[f]));
   for (const Opening& o : s.boundary.openings)

@@ -213,7 +213,8 @@ class AndersonMixer {
     const double* x[kMaxDepth] = {};
     for (int a = 0; a < k; ++a) x[a] = flat(dF_[idx[a]]);
     deterministic_block_sums(
-        team, *blocks_, 2 * k, partial_, st.sums, [&](std::int64_t b0, std::int64_t b1, double* acc) {
+        team, *blocks_, 2 * k, partial_, st.sums,
+        [&](std::int64_t b0, std::int64_t b1, double* acc) {
           simd::Vd sy[kMaxDepth], sz[kMaxDepth];
           for (int a = 0; a < k; ++a) sy[a] = sz[a] = simd::splat(0.0);
           // The doubles [b0 D, quads) go by quads, the rest one by one.

@@ -269,8 +269,6 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
   for (int j = std::max(begin, p.first_contact); j < end; ++j) update_contact_row<D>(p, j);
 }
 
-
-
 }  // namespace
 
 template <int D>
@@ -414,7 +412,8 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       barrier.set_size(order.size);
       // Each thread's free nodes: those of its zones and the separators after them.
       blocks.first.resize(order.size + 1);
-      for (int k = 0; k < order.size; ++k) blocks.first[k] = segment_block[2 * order.zones_of(k).first];
+      for (int k = 0; k < order.size; ++k)
+        blocks.first[k] = segment_block[2 * order.zones_of(k).first];
       blocks.first[order.size] = blocks.count();
     }
     const Team team{omp_get_thread_num(), order.size, &barrier};
@@ -527,12 +526,12 @@ SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j) {
   return y / p.volume[j];
 }
 
-#define SABLIER_INSTANTIATE(D)                                                       \
-  template struct ConeProblem<D>;                                                    \
-  template void assemble_delassus<D>(ConeProblem<D>&);                               \
-  template void apply_stress_to_velocity<D>(ConeProblem<D>&);                        \
-  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int,      \
-                                             std::vector<double>*);                  \
+#define SABLIER_INSTANTIATE(D)                                                  \
+  template struct ConeProblem<D>;                                               \
+  template void assemble_delassus<D>(ConeProblem<D>&);                          \
+  template void apply_stress_to_velocity<D>(ConeProblem<D>&);                   \
+  template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int, \
+                                             std::vector<double>*);             \
   template SymVec<D> row_strain_rate<D>(const ConeProblem<D>&, int);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)

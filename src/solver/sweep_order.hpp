@@ -43,8 +43,8 @@ struct SweepOrder {
   // Fewer rows than this in the separators between threads: one thread each.
   static constexpr int kSharedSeparatorRows = 200;
   const ConeProblem<D>& p;
-  int size;             // the team
-  int zones;            // Z
+  int size;   // the team
+  int zones;  // Z
   bool share_separators = false;
 
   SweepOrder(const ConeProblem<D>& problem, int team)
@@ -72,7 +72,8 @@ struct SweepOrder {
     // else all of it.
     const auto colour = [&](int c, int n, const auto& unit, bool shared) {
       int total = 0;
-      for (int i = 0; i < n; ++i) total += cs[unit_start(unit(i)) + c + 1] - cs[unit_start(unit(i)) + c];
+      for (int i = 0; i < n; ++i)
+        total += cs[unit_start(unit(i)) + c + 1] - cs[unit_start(unit(i)) + c];
       const auto [a, b] = shared ? as(rank).split(0, total) : std::pair<int, int>(0, total);
       for (int i = 0, off = 0; i < n; ++i) {
         const int r = unit_start(unit(i)) + c, len = cs[r + 1] - cs[r];
@@ -83,14 +84,20 @@ struct SweepOrder {
       done();
     };
     const auto [z0, z1] = zones_of(rank);
-    for (int c = 0; c < NC; ++c) colour(c, z1 - z0, [&](int i) { return z0 + i; }, false);
-    for (int c = 0; c < NC; ++c) colour(c, z1 - z0 - 1, [&](int i) { return zones + z0 + i; }, false);
+    for (int c = 0; c < NC; ++c)
+      colour(
+          c, z1 - z0, [&](int i) { return z0 + i; }, false);
+    for (int c = 0; c < NC; ++c)
+      colour(
+          c, z1 - z0 - 1, [&](int i) { return zones + z0 + i; }, false);
     wait();
     // The separators between threads: after each thread's last zone but the last.
     const auto boundary = [&](int k) { return zones + zones_of(k).second - 1; };
     if (size > 1 && !share_separators) {
       if (rank + 1 < size)
-        for (int c = 0; c < NC; ++c) colour(c, 1, [&](int) { return boundary(rank); }, false);
+        for (int c = 0; c < NC; ++c)
+          colour(
+              c, 1, [&](int) { return boundary(rank); }, false);
       wait();
     } else if (size > 1) {
       for (int c = 0; c < NC; ++c) {
@@ -117,7 +124,9 @@ struct SweepOrder {
   // The rows of the threads before `rank`.
   int rows_before(int rank) const {
     int n = 0;
-    for (int k = 0; k < rank; ++k) walk(k, [&](int j0, int j1) { n += j1 - j0; }, [] {}, [] {});
+    for (int k = 0; k < rank; ++k)
+      walk(
+          k, [&](int j0, int j1) { n += j1 - j0; }, [] {}, [] {});
     return n;
   }
 };
@@ -158,7 +167,6 @@ void free_velocities(const ConeProblem<D>& p, std::vector<std::int64_t>& free, S
     if (!seen[i] && is_free(i)) free.push_back(i);
   blocks.add_segment(static_cast<std::int64_t>(free.size()));
 }
-
 
 }  // namespace solver_detail
 }  // namespace sablier

@@ -7,14 +7,12 @@
 // Z zones separated by separators two node layers thick: rows of different
 // zones are then at least 3 layers apart, and so are rows of different
 // separators (each zone between two separators is at least 2 layers
-// thick; we keep them at least kMinZoneLayers). A sweep updates every zone, each on one thread and in its own
-// colour order (the rows of one colour of one zone are independent, which
-// the batched slide solves need), then every separator likewise. Only rows
-// of a zone and of the separators on either side of it touch the same
-// velocities, and the separators always come after the zones: every thread
-// count updates rows that share a velocity in the same order, so the result
-// does not depend on it, and threads need to wait for each other only
-// before the separators between them.
+// thick; we keep them at least kMinZoneLayers). A sweep updates every zone, each on one thread and
+// in its own colour order (the rows of one colour of one zone are independent, which the batched
+// slide solves need), then every separator likewise. Only rows of a zone and of the separators on
+// either side of it touch the same velocities, and the separators always come after the zones:
+// every thread count updates rows that share a velocity in the same order, so the result does not
+// depend on it, and threads need to wait for each other only before the separators between them.
 #pragma once
 
 #include <algorithm>
