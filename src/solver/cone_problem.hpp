@@ -153,9 +153,10 @@ void apply_stress_to_velocity(ConeProblem<D>& p);
 // the one reported). Solves that stall wander (docs/benchmarks.md, "Steps at
 // the cap"); the last iterate may sit on a spike.
 // The sweeps run on one OpenMP thread per zone, at most
-// omp_get_max_threads() and the machine's processors; a thread waits for the others only before the
-// separators between its zones and theirs, after them, and around each
-// colour of contact rows. The result does not depend on the thread count.
+// omp_get_max_threads() and the machine's processors; a thread waits for the
+// others only before the separators between its zones and theirs, after
+// them, and around each colour of contact rows. The result does not depend
+// on the thread count.
 // `history`, when given, receives every sweep's residual.
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
