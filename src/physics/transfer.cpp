@@ -71,10 +71,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
   const ZoneLayout layout = zone_layout<D>(coords, nodes, scene_.solver.zone_rows);
   constexpr int kColours = ipow(3, D);
   const int sand_runs = static_cast<int>(layout.run_start.size()) - 1;
-  std::vector<std::vector<std::int64_t>> by_colour(sand_runs);  // the runs' nodes
-  for (int r = 0; r < sand_runs; ++r)
-    for (int i = layout.run_start[r]; i < layout.run_start[r + 1]; ++i)
-      by_colour[r].push_back(nodes[layout.order[i]]);
+  std::vector<std::int64_t> sand_node(layout.order.size());  // the rows' nodes, in row order
+  for (std::size_t i = 0; i < sand_node.size(); ++i) sand_node[i] = nodes[layout.order[i]];
   ConeProblem<D>& P = problem_;
   P.zones = layout.zones;
   P.colour_start = layout.run_start;
@@ -106,15 +104,15 @@ void Simulation<D>::transfer_to_grid(double dt) {
   std::vector<double> solid(sand_rows, 0.0);
   if (!obstacles.empty()) {
     obstacle_by_colour.resize(kColours);
-    int r = 0;
     for (int run = 0; run < sand_runs; ++run)
-      for (std::int64_t node : by_colour[run]) {
+      for (int row = layout.run_start[run]; row < layout.run_start[run + 1]; ++row) {
+        const std::int64_t node = sand_node[row];
         const auto nc = grid_.node_coords(node);
         Vec<D> x, n;
         for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
         int which = 0;
         const double dist = obstacle_distance(obstacles, x, &n, &which);
-        solid[r++] = solid_fraction(dist, h);
+        solid[row] = solid_fraction(dist, h);
         if (dist >= h) continue;
         (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[run % kColours])
             .push_back({node, n, which});
@@ -185,13 +183,12 @@ void Simulation<D>::transfer_to_grid(double dt) {
   }
   P.resize_rows(rows);
   int r = 0;
-  for (const auto& list : by_colour)
-    for (std::int64_t node : list) {
-      P.node[r] = node;
-      row_of_node_[node] = r;
-      P.coupling[r].setZero();
-      ++r;
-    }
+  for (std::int64_t node : sand_node) {
+    P.node[r] = node;
+    row_of_node_[node] = r;
+    P.coupling[r].setZero();
+    ++r;
+  }
   obstacle_row_start_ = sand_rows;
   P.first_contact = sand_rows;
   P.contact_frame.clear();

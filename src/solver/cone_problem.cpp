@@ -412,8 +412,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       barrier.set_size(order.size);
       // Each thread's free nodes: those of its zones and the separators after them.
       blocks.first.resize(order.size + 1);
-      for (int k = 0; k < order.size; ++k)
-        blocks.first[k] = segment_block[2 * order.zones_of(k).first];
+      for (int k = 0; k < order.size; ++k) blocks.first[k] = segment_block[order.first_segment(k)];
       blocks.first[order.size] = blocks.count();
     }
     const Team team{omp_get_thread_num(), order.size, &barrier};

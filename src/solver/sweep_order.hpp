@@ -59,6 +59,9 @@ struct SweepOrder {
   Team as(int rank) const { return Team{rank, size, nullptr}; }
   std::pair<int, int> zones_of(int rank) const { return as(rank).split(0, zones); }
   static int unit_start(int u) { return u * NC; }
+  // Thread rank's first segment of the free velocities (free_velocities:
+  // zone z is segment 2 z, the separator after it 2 z + 1).
+  int first_segment(int rank) const { return 2 * zones_of(rank).first; }
 
   // f(j0, j1) on rank's ranges of rows in sweep order; done() after each
   // group of ranges whose rows are independent (rows of one colour of the
@@ -135,7 +138,7 @@ struct SweepOrder {
 // the threads that write them, and their blocks for the sums (anderson.hpp):
 // the nodes of the rows of zone 0, separator 0, zone 1, ... zone Z - 1, each
 // unit's by node index and in its own blocks (segment_block[s]: the first
-// block of the s-th), then any other (the bodies' unknowns). A thread's
+// block of the s-th, SweepOrder::first_segment), then any other (the bodies' unknowns). A thread's
 // zones and the separators after them are then consecutive, and so are the
 // velocities its sweeps write: loops over free nodes hand few velocities
 // between cores.
