@@ -58,25 +58,20 @@ inline void store3(double* x, __m256d v) {
 template <int D>
 inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
   const Vec<D>* u = p.velocity.data() + p.node[j];
-  const auto& g = p.sweep_coupling[j];
+  const auto& g = p.coupling[j];
   Mat<D> L = Mat<D>::Zero();
 #ifdef SABLIER_LANES3
   if constexpr (D == 3) {
     // Column b of L accumulates u_s g_s[b] over the stencil, in order: the
-    // same fused products and sums as the loop below, four lanes at a time.
-    const float* gs = g.data();
-    const double* gc = p.coupling_centre[j].data();
-    const __m256d vc = load3(u->data());
-    __m256d c0 = _mm256_mul_pd(vc, _mm256_broadcast_sd(gc));
-    __m256d c1 = _mm256_mul_pd(vc, _mm256_broadcast_sd(gc + 1));
-    __m256d c2 = _mm256_mul_pd(vc, _mm256_broadcast_sd(gc + 2));
+    // same fused products and sums as the loop below, four lanes at a time
+    // (bit-identical results; 2-5% of a 3D sweep, docs/benchmarks.md).
+    const double* gs = g.data();
+    __m256d c0 = _mm256_setzero_pd(), c1 = c0, c2 = c0;
     for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 3) {
-      if (s == ConeProblem<D>::NS / 2) continue;
       const __m256d v = load3(u[p.stencil[s]].data());
-      const __m256d gg = _mm256_cvtps_pd(_mm_loadu_ps(gs));
-      c0 = _mm256_fmadd_pd(v, _mm256_permute4x64_pd(gg, 0x00), c0);
-      c1 = _mm256_fmadd_pd(v, _mm256_permute4x64_pd(gg, 0x55), c1);
-      c2 = _mm256_fmadd_pd(v, _mm256_permute4x64_pd(gg, 0xaa), c2);
+      c0 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs), c0);
+      c1 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs + 1), c1);
+      c2 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs + 2), c2);
     }
     store3(L.col(0).data(), c0);
     store3(L.col(1).data(), c1);
@@ -84,10 +79,7 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     return to_sym<D>(L);
   }
 #endif
-  constexpr int centre = ConeProblem<D>::NS / 2;
-  L.noalias() = u[0] * p.coupling_centre[j].transpose();
-  for (int s = 0; s < ConeProblem<D>::NS; ++s)
-    if (s != centre) L.noalias() += u[p.stencil[s]] * g.col(s).template cast<double>().transpose();
+  for (int s = 0; s < ConeProblem<D>::NS; ++s) L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
   return to_sym<D>(L);
 }
 
@@ -97,14 +89,10 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   const Mat<D> T = from_sym<D>(dlambda);
   Vec<D>* u = p.velocity.data() + p.node[j];
   const Vec<D>* im = p.inv_mass.data() + p.node[j];
-  const auto& g = p.sweep_coupling[j];
-  constexpr int centre = ConeProblem<D>::NS / 2;
+  const auto& g = p.coupling[j];
   for (int s = 0; s < ConeProblem<D>::NS; ++s) {
     const std::int64_t o = p.stencil[s];
-    if (s == centre)
-      u[0] += im[0].cwiseProduct(T * p.coupling_centre[j]);
-    else
-      u[o] += im[o].cwiseProduct(T * g.col(s).template cast<double>());
+    u[o] += im[o].cwiseProduct(T * g.col(s));
   }
 }
 
@@ -289,21 +277,9 @@ void assemble_delassus(ConeProblem<D>& p) {
   const int n = p.rows();
   // The sand rows' blocks (contact rows get theirs below).
   const int sand = std::min(p.first_contact, n);
-  constexpr int centre = ConeProblem<D>::NS / 2;
-  p.sweep_coupling.resize(sand + 1);
-  p.sweep_coupling[sand].setZero();
-  p.coupling_centre.resize(sand);
 #pragma omp parallel for schedule(static)
   for (int j = 0; j < sand; ++j) {
-    auto& gs = p.sweep_coupling[j];
-    gs = p.coupling[j].template cast<typename ConeProblem<D>::SweepReal>();
-    gs.col(centre).setZero();
-    typename ConeProblem<D>::Coupling g = gs.template cast<double>();
-    // Minus the others, summed in stencil order.
-    Vec<D> sum = Vec<D>::Zero();
-    for (int s = 0; s < ConeProblem<D>::NS; ++s) sum += g.col(s);
-    g.col(centre) = -sum;
-    p.coupling_centre[j] = -sum;
+    const auto& g = p.coupling[j];
     const Vec<D>* im = p.inv_mass.data() + p.node[j];
     SymMat<D> W = SymMat<D>::Zero();
     for (int c = 0; c < SD; ++c) {
@@ -322,6 +298,7 @@ void assemble_delassus(ConeProblem<D>& p) {
   // Contact rows: W_c = w F^T M^{-1} F on the row's own node, w = |g_jj|.
   const int first = std::min(p.first_contact, n);
   p.contact_delassus.resize(n - first);
+  constexpr int centre = ConeProblem<D>::NS / 2;
 #pragma omp parallel for schedule(static)
   for (int j = first; j < n; ++j) {
     const Mat<D>& F = p.contact_frame[j - first];

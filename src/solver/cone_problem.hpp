@@ -26,7 +26,6 @@
 
 #include <cstdint>
 #include <limits>
-#include <type_traits>
 #include <vector>
 
 #include "core/tensor.hpp"
@@ -64,22 +63,6 @@ struct ConeProblem {
   int zones = 1;
   std::vector<std::int64_t> node;     // velocity index of the row's centre node
   std::vector<Coupling> coupling;     // g_ji, columns in stencil order
-  // What the sweeps gather and scatter with, set by assemble_delassus
-  // (which builds the diagonal blocks from them too): the sand rows' g_ji,
-  // in 3D rounded to single precision, but for the centre column (zero
-  // here), which is minus the sum of the others in double precision,
-  // coupling_centre. In 3D this halves the memory traffic of the largest
-  // array (docs/benchmarks.md; in 2D no gain was measured, so it stays in
-  // double precision), and the problem solved is exactly the one of these
-  // couplings. The columns of g_j. sum to zero (the Q1 gradients are a
-  // partition of unity's), and with the centre column so computed they
-  // still do to double rounding: the stresses conserve momentum as they did
-  // with the couplings in double precision. sweep_coupling holds one
-  // element more than the sand rows (vector loads read a float past a
-  // row's last column).
-  using SweepReal = std::conditional_t<D == 3, float, double>;
-  std::vector<Eigen::Matrix<SweepReal, D, NS>> sweep_coupling;
-  std::vector<Vec<D>> coupling_centre;
   std::vector<double> volume;         // V_j, m^3
   std::vector<double> k;              // (phi_max V_j - Phi_j)^+ / (sqrt(2d) dt), m^3/s
   std::vector<double> aperture;       // cone aperture (METHOD.md section 4)
