@@ -1,23 +1,12 @@
 // sablier: run, check and inspect granular-flow scenes. See README.md.
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include "commands.hpp"
+#include "core/heap.hpp"
 
 int main(int argc, char** argv) {
-#if defined(__GLIBC__)
-  // Every frame builds its files (hundreds of kB to MBs) in fresh buffers.
-  // glibc serves blocks that large with mmap and unmaps them on free, so
-  // each frame page-faulted all of its buffers in again; keeping them in the
-  // heap lets the next frame reuse the pages. Measured on collapse2d (1 s,
-  // 30 frames, one thread): 0.45 s outside the steps before, 0.24 s after
-  // (with the checkpoint buffer sized up front); system time 0.22 s against 0.07.
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
-#endif
+  sablier::keep_freed_memory_in_heap();
   CLI::App app{"Sablier: semi-implicit MPM for dry granular materials"};
   app.require_subcommand(1);
 

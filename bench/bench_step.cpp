@@ -16,6 +16,7 @@
 
 #include "solver/team.hpp"
 
+#include "core/heap.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
 
@@ -203,4 +204,13 @@ BENCHMARK(SpinBarrier2)->Unit(benchmark::kMillisecond)->Iterations(5);
 }  // namespace
 }  // namespace sablier
 
-BENCHMARK_MAIN();
+// Google Benchmark's main, after the tool's allocator settings (the steps
+// are timed as `sablier run` takes them).
+int main(int argc, char** argv) {
+  sablier::keep_freed_memory_in_heap();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
