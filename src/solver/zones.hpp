@@ -63,9 +63,7 @@ inline bool place_separators(const std::vector<int>& count, int z, std::vector<i
     // The separator's middle (after its first layer c) at the target.
     while (c < layers && before + count[c] < target) before += count[c++];
     const int lowest = s == 0 ? kMinZoneLayers : cut[s - 1] + 2 + kMinZoneLayers;
-    if (c < lowest) {
-      for (; c < lowest && c < layers; ++c) before += count[c];
-    }
+    for (; c < lowest && c < layers; ++c) before += count[c];
     cut[s] = c;
   }
   return z == 1 || cut[z - 2] + 2 + kMinZoneLayers <= layers;
