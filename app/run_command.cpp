@@ -211,6 +211,7 @@ class Runner {
     s.assembly_seconds = info.timings.assembly;
     s.solve_seconds = info.timings.solve;
     s.advection_seconds = info.timings.advection;
+    s.decompaction_work = info.restoring_work;
     stats_.add(s);
     for (std::size_t k = 0; k < info.obstacle_force.size(); ++k) {
       ObstacleForceRow r;

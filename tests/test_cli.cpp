@@ -40,6 +40,7 @@ TEST(Cli, RunWritesTheOutputs) {
     EXPECT_GT(s.iterations, 0);
     // Every step's residual is below the tolerance, or the step says it hit the cap.
     EXPECT_TRUE(s.residual <= 1e-5 || s.hit_cap) << "step " << s.step;
+    EXPECT_GE(s.decompaction_work, 0.0) << "step " << s.step;  // a bound on an energy; NaN fails
   }
   const ParticleFrame f0 = parse_vtp(read_file((dir / "frames/particles_00000.vtp").string()), "f0");
   EXPECT_EQ(f0.time, 0.0);

@@ -2,6 +2,8 @@
 // no temporary file and fail cleanly.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <sstream>
 
@@ -176,13 +178,27 @@ TEST(Writers, StatsRoundTrip) {
   s.residual = 3.3e-4;
   s.kinetic_energy = 1.0 / 7;
   s.hit_cap = true;
+  s.decompaction_work = 2.0 / 3;
   t.add(s);
-  const auto rows = parse_stats_csv(t.csv());
+  const std::string csv = t.csv();
+  const auto rows = parse_stats_csv(csv);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].dt, s.dt);
   EXPECT_EQ(rows[0].kinetic_energy, s.kinetic_energy);
   EXPECT_EQ(rows[0].iterations, 17);
   EXPECT_TRUE(rows[0].hit_cap);
+  EXPECT_EQ(rows[0].decompaction_work, s.decompaction_work);
+  // A file of a build before decompaction_work (16 columns) still reads, the
+  // missing column as NaN, so that such a run can be resumed.
+  const std::string old_header = std::string(kStatsHeader).substr(0, std::string(kStatsHeader).rfind(','));
+  const std::string line = csv.substr(csv.find('\n') + 1);
+  const std::string old = old_header + "\n" + line.substr(0, line.rfind(',')) + "\n";
+  const auto old_rows = parse_stats_csv(old);
+  ASSERT_EQ(old_rows.size(), 1u);
+  EXPECT_EQ(old_rows[0].iterations, 17);
+  EXPECT_TRUE(std::isnan(old_rows[0].decompaction_work));
+  EXPECT_EQ(parse_stats_csv_until(old, 3).size(), 1u);
+  EXPECT_THROW(parse_stats_csv(old_header + ",extra\n"), IoError);
 }
 
 TEST(Writers, AtomicWriteReplacesAndLeavesNoTemporary) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -9,20 +10,28 @@
 
 namespace sablier {
 
-const char* const kStatsHeader =
-    "step,time,dt,particles,active_nodes,iterations,residual,kinetic_energy,potential_energy,"
-    "max_speed,wall_seconds,hit_cap,transfer_seconds,assembly_seconds,solve_seconds,"
-    "advection_seconds";
+#define SABLIER_STATS_COLUMNS                                                             \
+  "step,time,dt,particles,active_nodes,iterations,residual,kinetic_energy,potential_energy," \
+  "max_speed,wall_seconds,hit_cap,transfer_seconds,assembly_seconds,solve_seconds,"          \
+  "advection_seconds"
+const char* const kStatsHeader = SABLIER_STATS_COLUMNS ",decompaction_work";
+
+namespace {
+// The header before decompaction_work (2026-12-02): a run written by an
+// older build resumes, its earlier rows reading NaN in the new column.
+const char* const kStatsHeader16 = SABLIER_STATS_COLUMNS;
+}  // namespace
+#undef SABLIER_STATS_COLUMNS
 
 std::string StatsTable::csv() const {
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "{}\n", kStatsHeader);
   for (const StepStats& s : rows_) {
-    fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+    fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
                    s.step, s.time, s.dt, s.particles, s.active_nodes, s.iterations, s.residual,
                    s.kinetic_energy, s.potential_energy, s.max_speed, s.wall_seconds,
                    s.hit_cap ? 1 : 0, s.transfer_seconds, s.assembly_seconds, s.solve_seconds,
-                   s.advection_seconds);
+                   s.advection_seconds, s.decompaction_work);
   }
   return fmt::to_string(out);
 }
@@ -47,16 +56,17 @@ bool parse_numbers(const std::string& line, std::vector<double>& v, std::string*
   return true;
 }
 
-// One data row; false (with `error` set) if it is not 16 numbers.
-bool parse_stats_row(const std::string& line, StepStats& s, std::string& error) {
+// One data row; false (with `error` set) if it is not `columns` numbers
+// (17, or 16 for a file of an older build).
+bool parse_stats_row(const std::string& line, StepStats& s, std::string& error, std::size_t columns) {
   std::vector<double> v;
   std::string bad;
   if (!parse_numbers(line, v, &bad)) {
     error = "stats.csv: bad number \"" + bad + "\"";
     return false;
   }
-  if (v.size() != 16) {
-    error = "stats.csv: expected 16 columns in \"" + line + "\"";
+  if (v.size() != columns) {
+    error = fmt::format("stats.csv: expected {} columns in \"{}\"", columns, line);
     return false;
   }
   s.step = static_cast<long>(v[0]);
@@ -75,7 +85,18 @@ bool parse_stats_row(const std::string& line, StepStats& s, std::string& error) 
   s.assembly_seconds = v[13];
   s.solve_seconds = v[14];
   s.advection_seconds = v[15];
+  s.decompaction_work = columns > 16 ? v[16] : std::numeric_limits<double>::quiet_NaN();
   return true;
+}
+
+// The number of columns the header names; throws IoError on an unknown header.
+std::size_t stats_columns(std::istream& in) {
+  std::string line;
+  if (std::getline(in, line)) {
+    if (line == kStatsHeader) return 17;
+    if (line == kStatsHeader16) return 16;
+  }
+  throw IoError("stats.csv: bad header");
 }
 
 }  // namespace
@@ -83,11 +104,11 @@ bool parse_stats_row(const std::string& line, StepStats& s, std::string& error) 
 std::vector<StepStats> parse_stats_csv(const std::string& text) {
   std::istringstream in(text);
   std::string line, error;
-  if (!std::getline(in, line) || line != kStatsHeader) throw IoError("stats.csv: bad header");
+  const std::size_t columns = stats_columns(in);
   std::vector<StepStats> rows;
   StepStats s;
   while (std::getline(in, line)) {
-    if (!parse_stats_row(line, s, error)) throw IoError(error);
+    if (!parse_stats_row(line, s, error, columns)) throw IoError(error);
     rows.push_back(s);
   }
   return rows;
@@ -96,11 +117,11 @@ std::vector<StepStats> parse_stats_csv(const std::string& text) {
 std::vector<StepStats> parse_stats_csv_until(const std::string& text, long last_step) {
   std::istringstream in(text);
   std::string line, error;
-  if (!std::getline(in, line) || line != kStatsHeader) throw IoError("stats.csv: bad header");
+  const std::size_t columns = stats_columns(in);
   std::vector<StepStats> rows;
   StepStats s;
   // A row without its newline is a torn write: dropped like a bad one.
-  while (std::getline(in, line) && !in.eof() && parse_stats_row(line, s, error) &&
+  while (std::getline(in, line) && !in.eof() && parse_stats_row(line, s, error, columns) &&
          s.step <= last_step)
     rows.push_back(s);
   return rows;

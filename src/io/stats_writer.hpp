@@ -16,6 +16,10 @@ struct StepStats {
   bool hit_cap = false;
   double transfer_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0,
          advection_seconds = 0.0;
+  // J (J/m in 2D): bound on the energy the decompaction of over-full nodes
+  // may have added in the step (StepInfo::restoring_work); NaN in the rows
+  // of a file written before the column existed.
+  double decompaction_work = 0.0;
 };
 
 class StatsTable {
