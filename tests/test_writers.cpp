@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <filesystem>
 #include <sstream>
 
@@ -190,7 +189,8 @@ TEST(Writers, StatsRoundTrip) {
   EXPECT_EQ(rows[0].decompaction_work, s.decompaction_work);
   // A file of a build before decompaction_work (16 columns) still reads, the
   // missing column as NaN, so that such a run can be resumed.
-  const std::string old_header = std::string(kStatsHeader).substr(0, std::string(kStatsHeader).rfind(','));
+  const std::string old_header =
+      std::string(kStatsHeader).substr(0, std::string(kStatsHeader).rfind(','));
   const std::string line = csv.substr(csv.find('\n') + 1);
   const std::string old = old_header + "\n" + line.substr(0, line.rfind(',')) + "\n";
   const auto old_rows = parse_stats_csv(old);

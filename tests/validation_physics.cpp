@@ -57,7 +57,8 @@ TEST(Validation, SiloDischargeDoesNotDependOnFillHeight) {
 // with four widths over a factor of 3 or 4, a few percent of noise on the
 // smallest moves it by 0.2 (measured in 2D, below).
 template <int D>
-double silo_discharge(const char* name, const std::vector<std::string>& overrides, double t0, double t1) {
+double silo_discharge(const char* name, const std::vector<std::string>& overrides, double t0,
+                      double t1) {
   Simulation<D> sim(scene(name, overrides));
   double mass[2] = {0.0, 0.0};
   const double times[2] = {t0, t1};
@@ -81,7 +82,8 @@ void fit_line(const std::vector<double>& x, const std::vector<double>& y, double
   double mx = 0.0, my = 0.0;
   for (std::size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n;
   double sxx = 0.0, sxy = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
   *a = sxy / sxx;
   *b = my - *a * mx;
 }
@@ -107,14 +109,15 @@ PowerFit fit_power(const std::vector<double>& D, const std::vector<double>& Q, d
   return f;
 }
 
-void check_beverloo(const std::vector<double>& D, const std::vector<double>& Q, double exponent, double h) {
+void check_beverloo(const std::vector<double>& D, const std::vector<double>& Q, double exponent,
+                    double h) {
   double best_e = 1.0;
   for (int i = 100; i <= 400; ++i)
     if (fit_power(D, Q, 0.01 * i).misfit < fit_power(D, Q, best_e).misfit) best_e = 0.01 * i;
   const PowerFit lower = fit_power(D, Q, exponent - 0.5), upper = fit_power(D, Q, exponent + 0.5);
   const PowerFit f = fit_power(D, Q, exponent);
-  std::cout << "misfit in log Q: " << lower.misfit << " (e = " << exponent - 0.5 << "), " << f.misfit
-            << " (" << exponent << "), " << upper.misfit << " (" << exponent + 0.5
+  std::cout << "misfit in log Q: " << lower.misfit << " (e = " << exponent - 0.5 << "), "
+            << f.misfit << " (" << exponent << "), " << upper.misfit << " (" << exponent + 0.5
             << "); best free exponent " << best_e << "; with " << exponent << ": D0 = " << f.D0 / h
             << " h, widths within " << f.worst << " of the fit\n";
   EXPECT_LT(f.misfit, lower.misfit);
@@ -175,8 +178,8 @@ TEST(Validation, SiloDischargeFollowsBeverloo3D) {
          "boundary.opening.0.min=[" + lo + "," + lo + ",0.0]",
          "boundary.opening.0.max=[" + hi + "," + hi + ",0.0]"},
         0.1, 0.4));
-    std::cout << "silo3d, " << n << " x " << n << " free nodes (D = " << D.back() << " m): " << Q.back()
-              << " kg/s\n";
+    std::cout << "silo3d, " << n << " x " << n << " free nodes (D = " << D.back()
+              << " m): " << Q.back() << " kg/s\n";
   }
   check_beverloo(D, Q, 2.5, h);
 }

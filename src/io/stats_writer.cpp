@@ -10,7 +10,7 @@
 
 namespace sablier {
 
-#define SABLIER_STATS_COLUMNS                                                             \
+#define SABLIER_STATS_COLUMNS                                                                \
   "step,time,dt,particles,active_nodes,iterations,residual,kinetic_energy,potential_energy," \
   "max_speed,wall_seconds,hit_cap,transfer_seconds,assembly_seconds,solve_seconds,"          \
   "advection_seconds"
@@ -58,7 +58,8 @@ bool parse_numbers(const std::string& line, std::vector<double>& v, std::string*
 
 // One data row; false (with `error` set) if it is not `columns` numbers
 // (17, or 16 for a file of an older build).
-bool parse_stats_row(const std::string& line, StepStats& s, std::string& error, std::size_t columns) {
+bool parse_stats_row(const std::string& line, StepStats& s, std::string& error,
+                     std::size_t columns) {
   std::vector<double> v;
   std::string bad;
   if (!parse_numbers(line, v, &bad)) {
