@@ -62,6 +62,7 @@ mu_i = { delta_mu = 0.3, I0 = 0.3, grain_diameter = 2e-3 }
 tolerance = 1e-6
 max_iterations = 300
 anderson = 3
+decompaction_moves = 4
 [boundary]
 default = "stick"
 xmax = "slip"
@@ -165,6 +166,8 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
   EXPECT_EQ(a.solver.tolerance, b.solver.tolerance);
   EXPECT_EQ(a.solver.max_iterations, b.solver.max_iterations);
   EXPECT_EQ(a.solver.anderson, b.solver.anderson);
+  EXPECT_EQ(a.solver.zone_rows, b.solver.zone_rows);
+  EXPECT_EQ(a.solver.decompaction_moves, b.solver.decompaction_moves);
   EXPECT_EQ(a.boundary.faces, b.boundary.faces);
   ASSERT_EQ(a.boundary.openings.size(), b.boundary.openings.size());
   for (std::size_t k = 0; k < a.boundary.openings.size(); ++k) {

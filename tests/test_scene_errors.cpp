@@ -141,6 +141,8 @@ std::vector<BadScene> time_material_solver_errors() {
        "0 <= anderson <= 16"},
       {"zone rows negative", with("[solver]\nzone_rows = -1\n"), "bad.toml:10: solver.zone_rows",
        "zone_rows >= 0"},
+      {"too many decompaction moves", with("[solver]\ndecompaction_moves = 17\n"),
+       "bad.toml:10: solver.decompaction_moves", "0 <= decompaction_moves <= 16"},
       {"iterations float", with("[solver]\nmax_iterations = 1e3\n"),
        "bad.toml:10: solver.max_iterations: expected an integer", ""},
   };

@@ -92,6 +92,8 @@ void Simulation<D>::init_boundaries() {
 // collapse, 3.4 in a frictionless dam break), so we push apart gradually:
 // k_j keeps kOverfullRelaxation of the excess per step. The energy this
 // injects is reported (StepInfo::restoring_work) and bounded in the tests.
+// With solver.decompaction_moves > 0 the clamp is pure and the grains are
+// moved apart after advection instead (decompaction.cpp).
 template <int D>
 void Simulation<D>::build_rows(double dt) {
   ConeProblem<D>& P = problem_;
@@ -127,7 +129,8 @@ void Simulation<D>::build_rows(double dt) {
     // few percent, and counting that as over-fullness levitated a bed on a
     // plane 0.1 h above a node row (measured: rising at 4 mm/s, phi 0.64).
     const double excess = std::min(0.0, phi_max_ * vj - phi_j);
-    P.k[j] = (room > 0.0 ? (cohesive ? 0.0 : room) : kOverfullRelaxation * excess) * inv_trace_dt;
+    const double push = scene_.solver.decompaction_moves > 0 ? 0.0 : kOverfullRelaxation * excess;
+    P.k[j] = (room > 0.0 ? (cohesive ? 0.0 : room) : push) * inv_trace_dt;
     P.lambda[j] = warm_lambda_[node];
   }
   // Obstacle rows: (lambda_RB ; gamma_RB) in DP(mu_RB) with gamma_RB =
@@ -286,6 +289,8 @@ StepInfo Simulation<D>::step(double dt) {
   }
   move_bodies(dt);
   transfer_to_particles(dt);
+  if (scene_.solver.decompaction_moves > 0)
+    info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
   info.timings.advection = seconds_since(t0);
 
   info.active_nodes = obstacle_row_start_;  // sand nodes (obstacle rows are extra)

@@ -34,7 +34,9 @@ struct StepInfo {
   int active_nodes = 0;  // stress rows (= velocity nodes of cells holding particles)
   int viscous_iterations = 0;
   // J: bound on the energy the decompaction of over-full nodes may add this
-  // step, 2 dt sum_j max(0, -lambda_N k_j) over k_j < 0.
+  // step: 2 dt sum_j max(0, -lambda_N k_j) over k_j < 0 when the cone
+  // problem pushes them apart; the work against gravity of the grains
+  // lifted when they are moved instead (solver.decompaction_moves).
   double restoring_work = 0.0;
   // Force the sand exerts on each [[obstacle]] over the step (N; N/m in 2D),
   // the reaction to the obstacle rows' stresses.
@@ -135,6 +137,10 @@ class Simulation {
   void attach_bodies(double dt);
   void move_bodies(double dt);
   void transfer_to_particles(double dt);
+  // solver.decompaction_moves > 0: moves grains out of over-full nodes
+  // after advection (decompaction.cpp); returns the work done against
+  // gravity, J (J/m in 2D).
+  double move_grains_apart(int moves, double dt);
   void emit_from_spouts(double start);  // sources: particles entering during the step
   bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;
   // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
@@ -167,6 +173,7 @@ class Simulation {
   std::vector<int> row_of_node_;      // stress row index or -1
   std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start
   std::vector<double> row_mu_sum_, row_cohesion_sum_;  // sum_p V_p N_j (mu_p, c_p)
+  std::vector<double> move_excess_, move_lift_;        // move_grains_apart: per node, per grain
 
   // Obstacles (METHOD.md section 3): rows [obstacle_row_start_, rows) are
   // nodes within one cell of an obstacle (their normals are the first

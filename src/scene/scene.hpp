@@ -67,6 +67,12 @@ struct SolverConfig {
   // thread per zone (solver/zones.hpp); 0 = one zone. It sets the order of
   // the Gauss-Seidel updates, so results depend on it, not on the threads.
   int zone_rows = 500;
+  // How grains crowded beyond phi_max by transfer errors are spread out
+  // again (docs/method.md, "What the decompaction costs"): 0 pushes them
+  // apart through the cone problem, 10% of the excess per step; n > 0 moves
+  // them instead, n times per step after advection, velocities untouched,
+  // and the cone problem only clamps (METHOD.md step 5).
+  int decompaction_moves = 0;
 };
 
 struct TimeConfig {

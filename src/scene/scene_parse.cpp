@@ -91,6 +91,7 @@ const std::vector<Field<SolverConfig>> kSolverFields{
     whole("max_iterations", &SolverConfig::max_iterations, closed(1, kInf)),
     whole("anderson", &SolverConfig::anderson, closed(0, 16)),
     whole("zone_rows", &SolverConfig::zone_rows, closed(0, kInf)),
+    whole("decompaction_moves", &SolverConfig::decompaction_moves, closed(0, 16)),
 };
 const std::vector<Field<SandConfig>> kSandFields{
     whole("particles_per_cell", &SandConfig::particles_per_cell, closed(1, 8)),

@@ -145,9 +145,13 @@ std::string scene_to_toml(const SceneConfig& s) {
       num(m.cohesion_decay));
   if (m.mu_i) out += mu_i_line(*m.mu_i);
   out += fmt::format(
-      "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nzone_rows = {}\n\n"
-      "[boundary]\n",
+      "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nzone_rows = {}\n",
       num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, s.solver.zone_rows);
+  // Written only when set, so that the resolved text (and the hash a
+  // resumed run checks) of scenes without it stays what it was.
+  if (s.solver.decompaction_moves > 0)
+    out += fmt::format("decompaction_moves = {}\n", s.solver.decompaction_moves);
+  out += "\n[boundary]\n";
   for (int f = 0; f < 2 * d; ++f)
     out += fmt::format("{} = \"{}\"\n", faces[f], boundary_name(s.boundary.faces[f]));
   for (const Opening& o : s.boundary.openings)

@@ -1,0 +1,93 @@
+// Grains crowded beyond phi_max moved apart after advection
+// (`solver.decompaction_moves` > 0; docs/method.md, "What the decompaction
+// costs"). The MPM transfer lets grains crowd into a node beyond
+// phi_max V_j; pushing them apart through the cone problem (k_j < 0, the
+// default) adds kinetic energy at every step, so much that the 2D collapse
+// does not converge under grid refinement (docs/validation.md, "Known
+// limits"). Here the cone problem only clamps (METHOD.md step 5) and the
+// grains are moved instead, velocities untouched: each move takes the nodes'
+// relative excess e_i = max(0, Phi_i / (phi_max V_i) - 1) and displaces every
+// grain by -kMoveRate h^2 grad e (x_p), e interpolated by the Q1 shape
+// functions; a grain whose move would leave the box or enter an obstacle
+// stays. kMoveRate = 0.3: at 0.5 and above the moves overshoot and the
+// grains clump below the grid's scale (measured, docs/method.md).
+#include <algorithm>
+
+#include "physics/shape.hpp"
+#include "physics/simulation.hpp"
+
+namespace sablier {
+
+namespace {
+constexpr double kMoveRate = 0.3;
+}  // namespace
+
+template <int D>
+double Simulation<D>::move_grains_apart(int moves, double dt) {
+  constexpr int NC = ipow(2, D);
+  const auto corner = grid_.corner_offsets();
+  const double h = grid_.h();
+  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+  const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
+  Vec<D> upper;
+  for (int a = 0; a < D; ++a) upper[a] = grid_.cells()[a] * h;
+  const auto inside = [&upper](const Vec<D>& x) {
+    for (int a = 0; a < D; ++a)
+      if (!(x[a] > 0.0 && x[a] < upper[a])) return false;
+    return true;
+  };
+  move_lift_.assign(n, 0.0);
+  for (int move = 0; move < moves; ++move) {
+    // Phi_i at the grains' present positions, summed in particle order (one
+    // thread: the order, hence the bits, do not depend on the thread count).
+    move_excess_.assign(grid_.node_count(), 0.0);
+    for (std::int64_t p = 0; p < n; ++p) {
+      const Vec<D>& x = particles_.position[p];
+      if (!inside(x)) continue;  // leaving through a free face
+      const auto cc = grid_.cell_of(x);
+      const std::int64_t base = grid_.cell_base_node(cc);
+      Vec<D> local;
+      for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
+      const Q1Stencil<D> s = q1_stencil<D>(local, h);
+      for (int a = 0; a < NC; ++a) move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
+    }
+    const std::int64_t nodes = grid_.node_count();
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < nodes; ++i) {
+      if (!(move_excess_[i] > 0.0)) continue;
+      const double full = phi_max_ * grid_.node_volume(grid_.node_coords(i));
+      move_excess_[i] = std::max(0.0, move_excess_[i] / full - 1.0);
+    }
+#pragma omp parallel for schedule(static)
+    for (std::int64_t p = 0; p < n; ++p) {
+      Vec<D>& x = particles_.position[p];
+      if (!inside(x)) continue;
+      const auto cc = grid_.cell_of(x);
+      const std::int64_t base = grid_.cell_base_node(cc);
+      Vec<D> local;
+      for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
+      const Q1Stencil<D> s = q1_stencil<D>(local, h);
+      Vec<D> grad = Vec<D>::Zero();
+      for (int a = 0; a < NC; ++a) grad += move_excess_[base + corner[a]] * s.grad[a];
+      if (grad.squaredNorm() == 0.0) continue;
+      const Vec<D> d = -kMoveRate * h * h * grad;
+      const Vec<D> y = x + d;
+      if (!inside(y)) continue;
+      if (!obstacles_end.empty()) {
+        Vec<D> normal;
+        if (obstacle_distance(obstacles_end, y, &normal) < 0.0) continue;
+      }
+      x = y;
+      // Work against gravity: a grain lifted gains m g height.
+      move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(d));
+    }
+  }
+  double lift = 0.0;  // in particle order
+  for (double w : move_lift_) lift += w;
+  return lift;
+}
+
+template double Simulation<2>::move_grains_apart(int, double);
+template double Simulation<3>::move_grains_apart(int, double);
+
+}  // namespace sablier
