@@ -36,6 +36,14 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       if (!(x[a] > 0.0 && x[a] < upper[a])) return false;
     return true;
   };
+  // The base node of x's cell and the shape functions there (as P2G).
+  const auto stencil_at = [&](const Vec<D>& x, std::int64_t* base) {
+    const auto cc = grid_.cell_of(x);
+    *base = grid_.cell_base_node(cc);
+    Vec<D> local;
+    for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
+    return q1_stencil<D>(local, h);
+  };
   move_lift_.assign(n, 0.0);
   for (int move = 0; move < moves; ++move) {
     // Phi_i at the grains' present positions, summed in particle order (one
@@ -44,11 +52,8 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
     for (std::int64_t p = 0; p < n; ++p) {
       const Vec<D>& x = particles_.position[p];
       if (!inside(x)) continue;  // leaving through a free face
-      const auto cc = grid_.cell_of(x);
-      const std::int64_t base = grid_.cell_base_node(cc);
-      Vec<D> local;
-      for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
-      const Q1Stencil<D> s = q1_stencil<D>(local, h);
+      std::int64_t base = 0;
+      const Q1Stencil<D> s = stencil_at(x, &base);
       for (int a = 0; a < NC; ++a) move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
     }
     const std::int64_t nodes = grid_.node_count();
@@ -62,11 +67,8 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
     for (std::int64_t p = 0; p < n; ++p) {
       Vec<D>& x = particles_.position[p];
       if (!inside(x)) continue;
-      const auto cc = grid_.cell_of(x);
-      const std::int64_t base = grid_.cell_base_node(cc);
-      Vec<D> local;
-      for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
-      const Q1Stencil<D> s = q1_stencil<D>(local, h);
+      std::int64_t base = 0;
+      const Q1Stencil<D> s = stencil_at(x, &base);
       Vec<D> grad = Vec<D>::Zero();
       for (int a = 0; a < NC; ++a) grad += move_excess_[base + corner[a]] * s.grad[a];
       if (grad.squaredNorm() == 0.0) continue;
