@@ -128,13 +128,12 @@ void check_beverloo(const std::vector<double>& D, const std::vector<double>& Q, 
 
 // 2D: the silo2d bin widened to 0.81 m, n = 4, 6, 10 and 16 free nodes,
 // the discharge over 0.2-0.6 s (the bin stays at least half full).
-// Measured 2026-12-02: Q = 62.4, 100.7, 204.9 and 400.8 kg/s per metre of
-// depth (the same widths run by `sablier run`, whose sub-steps divide each
-// frame equally, gave 58.8, 103.4, 203.6 and 400.1); with 3/2, D0 =
-// -0.78 h (the opening acts a little wider than its free nodes: the
-// velocity falls to zero only at the fixed nodes on either side) and the
-// widths within 2.7% of the fit (1.7%); misfits 0.062 (e = 1), 0.0011
-// (3/2), 0.0021 (2); best free exponent 1.66 (1.43).
+// Measured 2026-12-02 (4 grains per cell and axis): Q = 50.0, 91.1, 193.0
+// and 400.2 kg/s per metre of depth (the same widths run by `sablier run`,
+// whose sub-steps divide each frame equally: 50.6, 89.9, 193.5 and 401.7);
+// with 3/2, D0 = 0.04 h and the widths within 1.7% of the fit (3.1%);
+// misfits 0.11 (e = 1), 0.00062 (3/2), 0.0048 (2); best free exponent
+// 1.59 (1.65).
 TEST(Validation, SiloDischargeFollowsBeverloo2D) {
   constexpr double h = 0.01, centre = 0.405;
   std::vector<double> D, Q;
