@@ -140,7 +140,7 @@ TEST(Physics, EnergyNeverGrowsInAClosedBoxWithMovedGrains) {
 // (`sablier run`, seed 1, jitter 0.5), 0.602 with 4 moves (docs/method.md).
 TEST(Physics, MovedGrainsHoldPhiMax) {
   Simulation<2> sim(scene("collapse2d.toml", {"solver.decompaction_moves=4"}));
-  while (sim.time() < 0.9 - 1e-12) sim.step(sim.adaptive_dt(std::min(1.0 / 30, 0.9 - sim.time())));
+  run_until(sim, 0.9, 1.0 / 30);
   std::vector<double> phi(sim.particles().phi.begin(), sim.particles().phi.end());
   std::sort(phi.begin(), phi.end());
   const double median = phi[phi.size() / 2], p99 = phi[phi.size() * 99 / 100];

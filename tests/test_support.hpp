@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -98,13 +99,14 @@ SceneConfig small_block_only(SceneConfig s, const Vec3d& corner) {
   return s;
 }
 
-// Runs to time t with adaptive steps; checks every step's solver report
+// Runs to time t with adaptive steps, each within at most `max_dt` (a
+// frame, say) of the remaining time; checks every step's solver report
 // (the residual is below the tolerance, or the step says it hit the cap).
 template <int D>
-void run_until(Simulation<D>& sim, double t) {
+void run_until(Simulation<D>& sim, double t, double max_dt = 1e300) {
   const double tol = sim.scene().solver.tolerance;
   while (sim.time() < t - 1e-12) {
-    const StepInfo info = sim.step(sim.adaptive_dt(t - sim.time()));
+    const StepInfo info = sim.step(sim.adaptive_dt(std::min(max_dt, t - sim.time())));
     ASSERT_TRUE(info.solve.residual <= tol || info.solve.hit_cap)
         << "step " << sim.steps() << " residual " << info.solve.residual;
   }

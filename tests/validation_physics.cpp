@@ -28,7 +28,7 @@ TEST(Validation, SiloDischargeDoesNotDependOnFillHeight) {
   std::vector<double> mass;  // at 0, 0.3, 0.6, ... s
   for (int k = 0; k <= 5; ++k) {
     const double t = 0.3 * k;
-    while (sim.time() < t - 1e-12) sim.step(sim.adaptive_dt(std::min(1.0 / 30, t - sim.time())));
+    test::run_until(sim, t, 1.0 / 30);
     mass.push_back(sim.grain_mass());
   }
   const double early = (mass[1] - mass[3]) / 0.6, late = (mass[3] - mass[5]) / 0.6;
@@ -63,8 +63,7 @@ double silo_discharge(const char* name, const std::vector<std::string>& override
   double mass[2] = {0.0, 0.0};
   const double times[2] = {t0, t1};
   for (int k = 0; k < 2; ++k) {
-    while (sim.time() < times[k] - 1e-12)
-      sim.step(sim.adaptive_dt(std::min(1.0 / 30, times[k] - sim.time())));
+    test::run_until(sim, times[k], 1.0 / 30);
     mass[k] = sim.grain_mass();
   }
   return (mass[0] - mass[1]) / (t1 - t0);
@@ -201,7 +200,7 @@ std::vector<double> collapse_profile(const std::string& resolution) {
   Simulation<2> sim(
       scene("collapse2d.toml", {"grid.resolution=" + resolution, "sand.0.jitter=0.5", "seed=1",
                                 "sand.0.particles_per_cell=4", "solver.decompaction_moves=4"}));
-  while (sim.time() < 0.9 - 1e-12) sim.step(sim.adaptive_dt(std::min(1.0 / 30, 0.9 - sim.time())));
+  test::run_until(sim, 0.9, 1.0 / 30);
   constexpr double bin = 0.02;
   std::vector<double> thickness(40, 0.0);
   const Particles<2>& p = sim.particles();
@@ -248,7 +247,7 @@ double collapse_runout(const std::string& tolerance, int seed) {
   Simulation<2> sim(scene("collapse2d.toml",
                           {"solver.tolerance=" + tolerance, "solver.max_iterations=20000",
                            "seed=" + std::to_string(seed), "sand.0.jitter=0.5"}));
-  while (sim.time() < 1.2 - 1e-12) sim.step(sim.adaptive_dt(std::min(1.0 / 30, 1.2 - sim.time())));
+  test::run_until(sim, 1.2, 1.0 / 30);
   std::vector<double> xs;
   for (const Vec<2>& x : sim.particles().position) xs.push_back(x[0]);
   std::sort(xs.begin(), xs.end());
