@@ -28,6 +28,7 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
   const auto corner = grid_.corner_offsets();
   const double h = grid_.h();
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+  const std::int64_t nodes = grid_.node_count();
   const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
   Vec<D> upper;
   for (int a = 0; a < D; ++a) upper[a] = grid_.cells()[a] * h;
@@ -48,7 +49,7 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
   for (int move = 0; move < moves; ++move) {
     // Phi_i at the grains' present positions, summed in particle order (one
     // thread: the order, hence the bits, do not depend on the thread count).
-    move_excess_.assign(grid_.node_count(), 0.0);
+    move_excess_.assign(nodes, 0.0);
     for (std::int64_t p = 0; p < n; ++p) {
       const Vec<D>& x = particles_.position[p];
       if (!inside(x)) continue;  // leaving through a free face
@@ -56,7 +57,6 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       const Q1Stencil<D> s = stencil_at(x, &base);
       for (int a = 0; a < NC; ++a) move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
     }
-    const std::int64_t nodes = grid_.node_count();
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < nodes; ++i) {
       if (!(move_excess_[i] > 0.0)) continue;
