@@ -14,11 +14,10 @@
 #include <thread>
 #include <vector>
 
-#include "solver/team.hpp"
-
 #include "core/heap.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "solver/team.hpp"
 
 namespace sablier {
 namespace {
