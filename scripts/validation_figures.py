@@ -1,0 +1,338 @@
+#!/usr/bin/python3
+"""Draws the figures of docs/validation.md from fresh runs of build/sablier.
+
+    sudo apt-get install python3-matplotlib     # once (Debian's matplotlib)
+    /usr/bin/python3 scripts/validation_figures.py [--only NAME ...] [--reuse]
+
+Each figure runs the shipped scenes with the overrides of the matching test
+(tests/test_engine_physics.cpp, tests/validation_physics.cpp), reads the
+runs' stats.csv and last particle frame, and writes a PNG into
+docs/images/validation/. The runs stay in --work (default
+/tmp/sablier_validation); --reuse skips runs already finished there. All
+figures take about 10 minutes on 2 cores; each prints what it measured.
+"""
+import argparse
+import csv
+import glob
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RHO, PHI_MAX, G = 2500.0, 0.6, 9.81  # the shipped scenes' sand
+
+
+def run(args, name, scene, sets):
+    """Runs scenes/SCENE.toml with --set overrides into WORK/NAME (CSV frames too)."""
+    out = os.path.join(args.work, name)
+    if args.reuse and os.path.exists(os.path.join(out, "run.json")):
+        return out
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [args.sablier, "run", os.path.join(ROOT, "scenes", scene + ".toml"), "--out", out,
+           "--threads", str(args.threads), "--format", "vtp,csv"]
+    for s in sets:
+        cmd += ["--set", s]
+    print("  run", name, flush=True)
+    done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        sys.exit(f"error: {' '.join(cmd)} failed:\n{done.stderr[-2000:]}")
+    return out
+
+
+def columns(path):
+    """A CSV file as a dict of float arrays, by header name."""
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    data = np.array([[float(v) if v not in ("", "nan") else np.nan for v in r] for r in rows[1:]])
+    return {k: data[:, i] for i, k in enumerate(rows[0])}
+
+
+def stats(out):
+    return columns(os.path.join(out, "stats.csv"))
+
+
+def frame(out, index=None):
+    files = sorted(glob.glob(os.path.join(out, "frames", "particles_*.csv")))
+    return columns(files[-1] if index is None else files[index])
+
+
+def save(args, fig, name):
+    path = os.path.join(args.images, name + ".png")
+    fig.savefig(path + ".tmp.png", dpi=100, bbox_inches="tight")
+    os.replace(path + ".tmp.png", path)
+    plt.close(fig)
+    print("  wrote", os.path.relpath(path, ROOT))
+
+
+def percentile_front(x):
+    return np.sort(x)[int(0.99 * (len(x) - 1))]
+
+
+def bed(args):
+    """Vertical stress against depth in the beds at rest (BedAtRest2D/3D)."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.5))
+    for ax, (scene, depth, dim) in zip(axes, [("bed2d", 0.3, 2), ("bed3d", 0.25, 3)]):
+        out = run(args, scene, scene, [])
+        p, s = frame(out), stats(out)
+        up = "y" if dim == 2 else "z"
+        sv = p["syy" if dim == 2 else "szz"]
+        d = depth - p[up]
+        ax.plot(sv, d, ".", ms=1, color="0.7", label="grains")
+        h = 0.025 if dim == 2 else 0.025
+        edges = np.arange(0, depth + h, h)
+        mids, means = [], []
+        for a, b in zip(edges[:-1], edges[1:]):
+            sel = (d >= a) & (d < b)
+            if sel.any():
+                mids.append(d[sel].mean()), means.append(sv[sel].mean())
+        ax.plot(means, mids, "o", color="C0", label="mean per layer")
+        z = np.linspace(0, depth, 10)
+        ax.plot(RHO * PHI_MAX * G * z, z, "k-", label=r"weight above, $\rho\,\phi_{max}\,g\,$depth")
+        ax.invert_yaxis()
+        ax.set_xlabel("bulk vertical stress (Pa, compression positive)")
+        ax.set_ylabel("depth (m)")
+        ax.set_title(f"{scene}: 1 s at rest, fastest grain {s['max_speed'][-1]:.1e} m/s")
+        ax.legend(loc="upper right", fontsize=8)
+        deep = d > depth - 0.05
+        print(f"  {scene}: mean stress of the deepest 5 cm {sv[deep].mean():.1f} Pa at mean depth "
+              f"{d[deep].mean():.4f} m, weight {RHO * PHI_MAX * G * d[deep].mean():.1f} Pa")
+    fig.tight_layout()
+    save(args, fig, "bed_stress")
+
+
+def energy(args):
+    """Total energy in a closed box (EnergyNeverGrowsInAClosedBox, and WithMovedGrains)."""
+    closed = ["boundary.ymax=\"slip\"", "solver.tolerance=1e-6", "solver.max_iterations=20000",
+              "time.cfl=0.5", "time.frames=30"]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for moves, label in [(0, "as shipped (push)"), (4, "decompaction_moves = 4")]:
+        out = run(args, f"energy_m{moves}", "collapse2d", closed + [f"solver.decompaction_moves={moves}"])
+        s, p0 = stats(out), frame(out, 0)
+        # stats.csv has a row per step, after the step; E(0) is frame 0's: the
+        # column at rest, its potential energy relative to y = 0.
+        e0 = np.sum(RHO * p0["volume"] * G * p0["y"])
+        t = np.concatenate([[0.0], s["time"]])
+        e = np.concatenate([[e0], s["kinetic_energy"] + s["potential_energy"]])
+        axes[0].plot(t, e / e0, label=label)
+        axes[1].plot(t, np.concatenate([[0.0], np.cumsum(s["decompaction_work"])]) / e0, label=label)
+        print(f"  {label}: E(1 s)/E(0) = {e[-1] / e0:.3f}, largest step-to-step change "
+              f"{np.diff(e).max() / e0:+.2e} E(0), decompaction work "
+              f"{np.sum(s['decompaction_work']) / e0:.3f} E(0)")
+    axes[0].set_xlabel("time (s)"), axes[0].set_ylabel("(kinetic + potential) / E(0)")
+    axes[0].set_title("2D collapse in a box closed on every side")
+    axes[1].set_xlabel("time (s)"), axes[1].set_ylabel("cumulative decompaction work / E")
+    axes[1].set_title("energy the decompaction may add (in the bound)")
+    for ax in axes:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    save(args, fig, "energy_closed_box")
+
+
+def collapse(args):
+    """Run-out against aspect ratio (CollapseRunOutGrowsWithAspectRatio) and two taller columns."""
+    cases = [(0.5, 0.1), (1.0, 0.1), (2.0, 0.1), (3.0, 0.2), (4.0, 0.2)]
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), gridspec_kw={"width_ratios": [1.6, 1]})
+    ra, rr = [], []
+    for k, (a, h0) in enumerate(cases):
+        l0 = h0 / a
+        out = run(args, f"collapse_a{a:g}_h{h0:g}", "collapse2d",
+                  ["grid.resolution=[100,25]", f"sand.0.max=[{l0},{h0}]"])
+        p = frame(out)
+        runout = (percentile_front(p["x"]) - l0) / l0
+        ra.append(a), rr.append(runout)
+        # Deposit thickness: grain volume per 1 cm column over phi_max, scaled by H0.
+        bins = np.arange(0, 1.0 + 1e-9, 0.01)
+        vol, _ = np.histogram(p["x"], bins=bins, weights=p["volume"])
+        axes[0].plot(bins[:-1] / l0, vol / 0.01 / PHI_MAX / h0, color=f"C{k}",
+                     label=f"a = {a:g} (H0 = {h0:g} m)")
+        print(f"  a = {a:g}, H0 = {h0:g} m: run-out (L - L0)/L0 = {runout:.2f}")
+    axes[0].set_xlim(0, 8), axes[0].set_xlabel("x / L0"), axes[0].set_ylabel("thickness / H0")
+    axes[0].set_title("2D collapse (1 cm cells, mu = 0.5): deposits at 1.5 s")
+    axes[0].legend(fontsize=8)
+    a = np.linspace(0.3, 1.8, 20)
+    axes[1].plot(a, 1.2 * a, "k-", label="1.2 a (a < 1.8)")
+    a = np.linspace(2.8, 4.5, 20)
+    axes[1].plot(a, 1.9 * a ** (2 / 3), "k--", label="1.9 a^(2/3) (a > 2.8)")
+    axes[1].plot(ra, rr, "o", color="C3", label="Sablier (99th percentile of x)")
+    axes[1].set_xlabel("aspect ratio a = H0 / L0"), axes[1].set_ylabel("(L - L0) / L0")
+    axes[1].set_title("run-out; lines: Lube et al. 2005, 2D experiments", fontsize=10)
+    axes[1].legend(fontsize=8)
+    fig.tight_layout()
+    save(args, fig, "collapse_runout")
+
+
+def incline(args):
+    """Fastest grain on a tilted rough floor (TiltedLayerStopsBelowFrictionAngle, ...Flows...)."""
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for theta, mu, end, label in [(20, 0.5, "slip", "20 deg, mu = 0.5, walled: tan < mu"),
+                                  (35, 0.4, "free", "35 deg, mu = 0.4, free end: > asin(mu)")]:
+        th = math.radians(theta)
+        s = stats(run(args, f"incline_{theta}", "collapse2d",
+                      ["grid.resolution=[80,20]", "sand.0.max=[1.0,0.1]",
+                       f"gravity=[{G * math.sin(th)},{-G * math.cos(th)}]", f"material.mu={mu}",
+                       f"boundary.xmax=\"{end}\"", "time.frames=45"]))
+        ax.semilogy(s["time"], s["max_speed"], label=label)
+        print(f"  {label}: fastest grain {s['max_speed'][-1]:.2e} m/s at {s['time'][-1]:.2f} s")
+    ax.set_xlabel("time (s)"), ax.set_ylabel("fastest grain (m/s)")
+    ax.set_title("0.1 m layer on a rough floor, tilted gravity")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    save(args, fig, "incline")
+
+
+def fit_power(D, Q, e):
+    """Q = K (D - D0)^e by a line through Q^(1/e); returns K, D0."""
+    a, b = np.polyfit(D, Q ** (1 / e), 1)
+    return a ** e, -b / a
+
+
+def silo(args):
+    """Discharge against fill height and orifice width (the Validation.Silo* tests)."""
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
+    s = stats(run(args, "silo2d_fill", "silo2d", ["time.frames=45"]))
+    vp = (0.01 / 4) ** 2 * PHI_MAX  # 4 grains per cell and axis
+    mass = s["particles"] * vp * RHO
+    axes[0].plot(s["time"], mass, color="C0")
+    for t0, t1 in [(0.3, 0.9), (0.9, 1.5)]:
+        sel = (s["time"] >= t0) & (s["time"] <= t1)
+        q, c = np.polyfit(s["time"][sel], mass[sel], 1)
+        axes[0].plot([t0, t1], [q * t0 + c, q * t1 + c], "k--")
+        axes[0].text(t1, q * t1 + c, f" {-q:.0f} kg/s/m", fontsize=8, va="bottom")
+        print(f"  silo2d discharge {t0}-{t1} s: {-q:.1f} kg/s per metre")
+    axes[0].set_xlabel("time (s)"), axes[0].set_ylabel("grains in the bin (kg per m of depth)")
+    axes[0].set_title("silo2d: the rate does not depend on the fill")
+    for ax, dim, ns in [(axes[1], 2, [4, 6, 10, 16]), (axes[2], 3, [3, 5, 7, 9])]:
+        D, Q = [], []
+        for n in ns:
+            lo = lambda c, sign: c + sign * (0.5 * (n - 1) * 0.01 + 0.003)  # noqa: E731
+            if dim == 2:
+                sets = ["grid.size=[0.81,0.61]", "grid.resolution=[81,61]", "sand.0.max=[0.81,0.45]",
+                        f"boundary.opening.0.min=[{lo(0.405, -1)},0.0]",
+                        f"boundary.opening.0.max=[{lo(0.405, 1)},0.0]", "time.frames=18"]
+                vp, t0, t1 = (0.01 / 4) ** 2 * PHI_MAX, 0.2, 0.6
+            else:
+                sets = ["grid.size=[0.3,0.3,0.2]", "grid.resolution=[30,30,20]",
+                        "sand.0.max=[0.3,0.3,0.15]", "solver.tolerance=1e-4",
+                        "solver.max_iterations=500",
+                        f"boundary.opening.0.min=[{lo(0.15, -1)},{lo(0.15, -1)},0.0]",
+                        f"boundary.opening.0.max=[{lo(0.15, 1)},{lo(0.15, 1)},0.0]", "time.frames=12"]
+                vp, t0, t1 = (0.01 / 2) ** 3 * PHI_MAX, 0.1, 0.4
+            st = stats(run(args, f"beverloo{dim}d_{n}", f"silo{dim}d", sets))
+            sel = (st["time"] >= t0 - 1e-9) & (st["time"] <= t1 + 1e-9)
+            q = -np.polyfit(st["time"][sel], st["particles"][sel] * vp * RHO, 1)[0]
+            D.append(n * 0.01), Q.append(q)
+        D, Q = np.array(D), np.array(Q)
+        e = 1.5 if dim == 2 else 2.5
+        K, D0 = fit_power(D, Q, e)
+        C = K / (RHO * PHI_MAX * math.sqrt(G))
+        x = np.linspace(0.8 * D.min(), 1.2 * D.max(), 50)
+        ax.loglog(D, Q, "o", color="C3", label="Sablier (1 cm cells)")
+        ax.loglog(x, K * (x - D0) ** e, "k-", label=f"C rho_b sqrt(g) (D - D0)^{e:g}: C = {C:.2f}, D0 = {D0 / 0.01:.2f} h")
+        Kl, D0l = fit_power(D, Q, e - 0.5)
+        xl = x[x > D0l]
+        ax.loglog(xl, Kl * (xl - D0l) ** (e - 0.5), "k:",
+                  label=f"best fit with a liquid's exponent {e - 0.5:g} (D0 = {D0l / 0.01:.1f} h)")
+        ax.set_xlabel("orifice width D (m)" + (", square side" if dim == 3 else ""))
+        ax.set_ylabel("discharge (kg/s" + (" per m)" if dim == 2 else ")"))
+        ax.set_title(f"Beverloo's law in {dim}D (silo{dim}d, widened bin)")
+        ax.legend(fontsize=7)
+        print(f"  {dim}D: D = {D}, Q = {np.round(Q, 2)}, C = {C:.2f}, D0 = {D0 / 0.01:.2f} h")
+    fig.tight_layout()
+    save(args, fig, "silo")
+
+
+def refinement(args):
+    """Deposit profiles of the 2D collapse on four grids, as shipped and with moved grains."""
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4), sharey=True)
+    grids = [(40, 10), (80, 20), (160, 40), (320, 80)]
+    for ax, (moves, ppc, title) in zip(axes, [(0, 3, "as shipped: grains pushed apart, 3 per cell"),
+                                             (4, 4, "decompaction_moves = 4, 4 grains per cell")]):
+        previous = None
+        for k, (nx, ny) in enumerate(grids):
+            out = run(args, f"refine_m{moves}_{nx}", "collapse2d",
+                      [f"grid.resolution=[{nx},{ny}]", "sand.0.jitter=0.5", "seed=1",
+                       f"sand.0.particles_per_cell={ppc}", f"solver.decompaction_moves={moves}",
+                       "time.frames=27"])
+            p = frame(out)
+            bins = np.arange(0, 0.8 + 1e-9, 0.02)
+            vol, _ = np.histogram(p["x"], bins=bins, weights=p["volume"])
+            th = vol / 0.02 / PHI_MAX
+            gap = "" if previous is None else f", gap {1e3 * np.mean(np.abs(th - previous)):.1f} mm"
+            runout = (percentile_front(p["x"]) - 0.25) / 0.25
+            ax.step(bins[:-1], 1e3 * th, where="post", color=f"C{k}",
+                    label=f"h = {1000 / nx:g} mm: run-out {runout:.2f}{gap}")
+            print(f"  moves {moves}, h = {1000 / nx:g} mm: run-out {runout:.2f}{gap}, median phi "
+                  f"{np.median(p['phi']):.3f}")
+            previous = th
+        ax.set_title(title, fontsize=10), ax.set_xlabel("x (m)")
+        ax.legend(fontsize=8)
+    axes[0].set_ylabel("deposit thickness at 0.9 s (mm)")
+    fig.suptitle("2D collapse under grid refinement (collapse2d, jitter 0.5, seed 1)", fontsize=11)
+    fig.tight_layout()
+    save(args, fig, "grid_refinement")
+
+
+def pile(args):
+    """The poured pile's free surface (pile2d) against atan(mu) and asin(mu)."""
+    out = run(args, "pile2d", "pile2d", [])
+    p = frame(out)
+    fig, ax = plt.subplots(figsize=(10, 3.2))
+    ax.plot(p["x"], p["y"], ".", ms=0.5, color="0.6")
+    w = 0.005
+    cols = np.floor(p["x"] / w).astype(int)
+    top = {c: p["y"][cols == c].max() for c in np.unique(cols)}
+    xs = np.array([(c + 0.5) * w for c in top]), np.array(list(top.values()))
+    height = xs[1].max()
+    peak = xs[0][np.argmax(xs[1])]
+    angles = []
+    refs = [(math.atan(0.5), "k--", "atan(mu) = 26.6 deg"), (math.asin(0.5), "k:", "asin(mu) = 30 deg")]
+    for side in (-1, 1):
+        sel = (np.sign(xs[0] - peak) == side) & (xs[1] > 0.2 * height) & (xs[1] < 0.8 * height)
+        slope, c = np.polyfit(xs[0][sel], xs[1][sel], 1)
+        angles.append(math.degrees(math.atan(abs(slope))))
+        xx = np.array([xs[0][sel].min(), xs[0][sel].max()])
+        ax.plot(xx, slope * xx + c, "r-", lw=2, label="fitted flank" if side < 0 else None)
+        # Reference slopes through the fitted segment's middle.
+        xm = xx.mean()
+        for ang, style, label in refs:
+            t = -side * math.tan(ang)
+            ax.plot(xx, slope * xm + c + t * (xx - xm), style, label=label if side < 0 else None)
+    ax.set_aspect("equal"), ax.set_xlabel("x (m)"), ax.set_ylabel("y (m)")
+    ax.set_title(f"pile2d at 2 s: flanks at {angles[0]:.1f} and {angles[1]:.1f} deg (red fits)")
+    ax.legend(fontsize=8, loc="upper right")
+    print(f"  pile2d: height {height:.4f} m, flanks {angles[0]:.1f} and {angles[1]:.1f} deg")
+    fig.tight_layout()
+    save(args, fig, "pile")
+
+
+FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "silo": silo,
+           "refinement": refinement, "pile": pile}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--sablier", default=os.path.join(ROOT, "build", "sablier"))
+    ap.add_argument("--work", default="/tmp/sablier_validation")
+    ap.add_argument("--images", default=os.path.join(ROOT, "docs", "images", "validation"))
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--only", nargs="*", choices=sorted(FIGURES), default=sorted(FIGURES))
+    ap.add_argument("--reuse", action="store_true", help="keep runs already finished in --work")
+    args = ap.parse_args()
+    if not os.access(args.sablier, os.X_OK):
+        sys.exit(f"error: {args.sablier} not found: build first (scripts/setup.sh)")
+    os.makedirs(args.work, exist_ok=True), os.makedirs(args.images, exist_ok=True)
+    for name in args.only:
+        print(name, flush=True)
+        FIGURES[name](args)
+
+
+if __name__ == "__main__":
+    main()
