@@ -137,7 +137,9 @@ TEST(Physics, EnergyNeverGrowsInAClosedBoxWithMovedGrains) {
 // problem alone (METHOD.md's pure clamp) lets the transfer crowd them: the
 // shipped 2D collapse (12.5 mm, 3 grains per cell and axis) at 0.9 s,
 // median phi at the grains. Measured 2026-12-02: 0.623 with the pure clamp
-// (`sablier run`, seed 1, jitter 0.5), 0.602 with 4 moves (docs/method.md).
+// (`sablier run`, seed 1, jitter 0.5), 0.602 with 4 moves (docs/method.md);
+// as this test steps, 0.6035, and 0.6044 since moves never oppose a grain's
+// velocity (seventh session).
 TEST(Physics, MovedGrainsHoldPhiMax) {
   Simulation<2> sim(scene("collapse2d.toml", {"solver.decompaction_moves=4"}));
   run_until(sim, 0.9, 1.0 / 30);

@@ -8,9 +8,10 @@
 // grains are moved instead, velocities untouched: each move takes the nodes'
 // relative excess e_i = max(0, Phi_i / (phi_max V_i) - 1) and displaces every
 // grain by -kMoveRate h^2 grad e (x_p), e interpolated by the Q1 shape
-// functions; a grain whose move would leave the box or enter an obstacle
-// stays. kMoveRate = 0.3: at 0.5 and above the moves overshoot and the
-// grains clump below the grid's scale (measured, docs/method.md).
+// functions, less any component against the grain's velocity; a grain whose
+// move would leave the box or enter an obstacle stays. kMoveRate = 0.3: at
+// 0.5 and above the moves overshoot and the grains clump below the grid's
+// scale (measured, docs/method.md).
 #include <algorithm>
 
 #include "physics/shape.hpp"
@@ -72,7 +73,15 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       Vec<D> grad = Vec<D>::Zero();
       for (int a = 0; a < NC; ++a) grad += move_excess_[base + corner[a]] * s.grad[a];
       if (grad.squaredNorm() == 0.0) continue;
-      const Vec<D> d = -kMoveRate * h * h * grad;
+      Vec<D> d = -kMoveRate * h * h * grad;
+      // Never against the grain's own velocity: where the flow converges
+      // (above an orifice) the excess peaks downstream, and moving grains
+      // back up its gradient held the flow back (3D silo, 3 x 3 node
+      // orifice: 0.44 kg/s against 0.80 under the pure clamp; with the
+      // opposing component removed, 0.79; docs/method.md).
+      const Vec<D>& u = particles_.velocity[p];
+      const double du = d.dot(u);
+      if (du < 0.0) d -= (du / u.squaredNorm()) * u;
       const Vec<D> y = x + d;
       if (!inside(y)) continue;
       if (!obstacles_end.empty()) {
