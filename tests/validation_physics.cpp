@@ -1,6 +1,7 @@
 // Long validation runs (ctest -L validation): the silo's discharge against
-// the fill height and the orifice's width, and the convergence of a collapse
-// as the solver tolerance tightens.
+// the fill height and the orifice's width, moved grains at a small orifice,
+// and the convergence of a collapse as the grid is refined and as the solver
+// tolerance tightens.
 #include <gtest/gtest.h>
 
 #include <algorithm>
