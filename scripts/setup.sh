@@ -6,6 +6,7 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake pkg-config libeigen3-dev libtomlplusplus-dev libcli11-dev
           libfmt-dev libgtest-dev libbenchmark-dev libpng-dev zlib1g-dev
           python3-vtk9   # the test that VTK reads our files
+          python3-matplotlib   # scripts/validation_figures.py and its test
           imagemagick ffmpeg)  # sablier render --gif / --mp4, and their test
 missing=()
 for p in "${packages[@]}"; do

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Draws the figures of docs/validation.md from fresh runs of build/sablier.
 
-    sudo apt-get install python3-matplotlib     # once (Debian's matplotlib)
+    bash scripts/setup.sh       # builds, and installs Debian's python3-matplotlib
     /usr/bin/python3 scripts/validation_figures.py [--only NAME ...] [--reuse]
 
 Each figure runs the shipped scenes with the overrides of the matching test
@@ -69,6 +69,8 @@ def save(args, fig, name):
     fig.savefig(path + ".tmp.png", dpi=100, bbox_inches="tight")
     os.replace(path + ".tmp.png", path)
     plt.close(fig)
+    if os.path.getsize(path) < 1000:
+        sys.exit(f"error: {path}: empty picture")
     print("  wrote", os.path.relpath(path, ROOT))
 
 
