@@ -138,6 +138,26 @@ def energy(args):
     save(args, fig, "energy_closed_box")
 
 
+def runout_panel(ax, ra, rr, size, front, measure, title, fits):
+    """Run-out against aspect ratio: the measured points and experimental fits
+    (a_lo, a_hi, function, line style, label)."""
+    for lo, hi, f, style, label in fits:
+        a = np.linspace(lo, hi, 20)
+        ax.plot(a, f(a), style, label=label)
+    ax.plot(ra, rr, "o", color="C3", label=f"Sablier ({measure})")
+    ax.set_xlabel(f"aspect ratio a = H0 / {size}"), ax.set_ylabel(f"({front} - {size}) / {size}")
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=8)
+
+
+def save_runout(args, fig, axes, name):
+    """Deposit profiles (left) and run-out (right): the shared finish."""
+    axes[0].set_ylabel("thickness / H0")
+    axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    save(args, fig, name)
+
+
 def collapse(args):
     """Run-out against aspect ratio (CollapseRunOutGrowsWithAspectRatio) and two taller columns."""
     cases = [(0.5, 0.1), (1.0, 0.1), (2.0, 0.1), (3.0, 0.2), (4.0, 0.2)]
@@ -156,19 +176,13 @@ def collapse(args):
         axes[0].plot(bins[:-1] / l0, vol / 0.01 / PHI_MAX / h0, color=f"C{k}",
                      label=f"a = {a:g} (H0 = {h0:g} m)")
         print(f"  a = {a:g}, H0 = {h0:g} m: run-out (L - L0)/L0 = {runout:.2f}")
-    axes[0].set_xlim(0, 8), axes[0].set_xlabel("x / L0"), axes[0].set_ylabel("thickness / H0")
+    axes[0].set_xlim(0, 8), axes[0].set_xlabel("x / L0")
     axes[0].set_title("2D collapse (1 cm cells, mu = 0.5): deposits at 1.5 s")
-    axes[0].legend(fontsize=8)
-    a = np.linspace(0.3, 1.8, 20)
-    axes[1].plot(a, 1.2 * a, "k-", label="1.2 a (a < 1.8)")
-    a = np.linspace(2.8, 4.5, 20)
-    axes[1].plot(a, 1.9 * a ** (2 / 3), "k--", label="1.9 a^(2/3) (a > 2.8)")
-    axes[1].plot(ra, rr, "o", color="C3", label="Sablier (99th percentile of x)")
-    axes[1].set_xlabel("aspect ratio a = H0 / L0"), axes[1].set_ylabel("(L - L0) / L0")
-    axes[1].set_title("run-out; lines: Lube et al. 2005, 2D experiments", fontsize=10)
-    axes[1].legend(fontsize=8)
-    fig.tight_layout()
-    save(args, fig, "collapse_runout")
+    runout_panel(axes[1], ra, rr, "L0", "L", "99th percentile of x",
+                 "run-out; lines: Lube et al. 2005, 2D experiments",
+                 [(0.3, 1.8, lambda a: 1.2 * a, "k-", "1.2 a (a < 1.8)"),
+                  (2.8, 4.5, lambda a: 1.9 * a ** (2 / 3), "k--", "1.9 a^(2/3) (a > 2.8)")])
+    save_runout(args, fig, axes, "collapse_runout")
 
 
 def incline(args):
@@ -363,19 +377,13 @@ def axisym(args):
         axes[0].plot(0.5 * (bins[1:] + bins[:-1]) / r0, vol / area / PHI_MAX / h0, color=f"C{k}",
                      label=f"a = {a:g} (R0 = {100 * r0:g} cm)")
         print(f"  a = {a:g}, R0 = {r0} m: run-out (R - R0)/R0 = {runout:.2f} (99.5th percentile of r)")
-    axes[0].set_xlim(0, 5), axes[0].set_xlabel("r / R0"), axes[0].set_ylabel("thickness / H0")
+    axes[0].set_xlim(0, 5), axes[0].set_xlabel("r / R0")
     axes[0].set_title("3D axisymmetric collapse (6 mm cells, mu = 0.5): deposits at 0.6 s")
-    axes[0].legend(fontsize=8)
-    a = np.linspace(0.3, 1.7, 20)
-    axes[1].plot(a, 1.24 * a, "k-", label="1.24 a (a < 1.7)")
-    a = np.linspace(1.7, 3.3, 20)
-    axes[1].plot(a, 1.6 * np.sqrt(a), "k--", label="1.6 a^(1/2) (a > 1.7)")
-    axes[1].plot(ra, rr, "o", color="C3", label="Sablier (99.5th percentile of r)")
-    axes[1].set_xlabel("aspect ratio a = H0 / R0"), axes[1].set_ylabel("(R - R0) / R0")
-    axes[1].set_title("run-out; lines: Lube et al. 2004, experiments", fontsize=10)
-    axes[1].legend(fontsize=8)
-    fig.tight_layout()
-    save(args, fig, "axisym_runout")
+    runout_panel(axes[1], ra, rr, "R0", "R", "99.5th percentile of r",
+                 "run-out; lines: Lube et al. 2004, experiments",
+                 [(0.3, 1.7, lambda a: 1.24 * a, "k-", "1.24 a (a < 1.7)"),
+                  (1.7, 3.3, lambda a: 1.6 * np.sqrt(a), "k--", "1.6 a^(1/2) (a > 1.7)")])
+    save_runout(args, fig, axes, "axisym_runout")
 
 
 FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "silo": silo,
