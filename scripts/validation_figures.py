@@ -185,6 +185,30 @@ def collapse(args):
     save_runout(args, fig, axes, "collapse_runout")
 
 
+def frictionless(args):
+    """A frictionless column spreads to a flat layer (FrictionlessColumnBecomesAFlatLayer)."""
+    out = run(args, "frictionless", "collapse2d",
+              ["material.mu=0", "material.viscosity=2", "grid.resolution=[80,20]",
+               "sand.0.max=[0.2,0.2]", "boundary.xmax=\"slip\"", "time.frames=120"])
+    fig, ax = plt.subplots(figsize=(9, 3))
+    h = 1.0 / 80
+    for index, style, label in [(0, "--", "t = 0"), (15, "-", "t = 0.5 s"), (None, "-", "t = 4 s")]:
+        p = frame(out, index)
+        cols = np.floor(p["x"] / h).astype(int)
+        xs = np.arange(80)
+        top = np.array([p["y"][cols == c].max() if np.any(cols == c) else 0.0 for c in xs])
+        ax.step((xs + 0.5) * h, top, where="mid", linestyle=style, label=label)
+    expected = 0.2 * 0.2 / 1.0 - 0.25 * h
+    ax.axhline(expected, color="k", lw=0.8, label="area / width, less a quarter cell")
+    print(f"  frictionless: top grains at 4 s between {top.min():.4f} and {top.max():.4f} m "
+          f"(mean {top.mean():.4f}), expected {expected:.4f} m")
+    ax.set_xlabel("x (m)"), ax.set_ylabel("highest grain (m)")
+    ax.set_title("mu = 0, viscosity 2 Pa s: a 0.2 m column in a 1 m box spreads flat", fontsize=10)
+    ax.legend(fontsize=8, loc="upper right")
+    fig.tight_layout()
+    save(args, fig, "frictionless")
+
+
 def incline(args):
     """Fastest grain on a tilted rough floor (TiltedLayerStopsBelowFrictionAngle, ...Flows...)."""
     fig, ax = plt.subplots(figsize=(6.5, 4))
@@ -388,7 +412,7 @@ def axisym(args):
 
 FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "silo": silo,
            "refinement": refinement, "pile": pile,
-           "tolerance": tolerance, "axisym": axisym}
+           "tolerance": tolerance, "axisym": axisym, "frictionless": frictionless}
 
 
 def main():
