@@ -8,12 +8,13 @@ Each figure runs the shipped scenes with the overrides of the matching test
 (tests/test_engine_physics.cpp, tests/validation_physics.cpp), reads the
 runs' stats.csv and last particle frame, and writes a PNG into
 docs/images/validation/. The runs stay in --work (default
-/tmp/sablier_validation); --reuse skips runs already finished there. All
+/tmp/sablier_validation); --reuse skips the runs that finished there. All
 figures take about 10 minutes on 2 cores; each prints what it measured.
 """
 import argparse
 import csv
 import glob
+import json
 import math
 import os
 import shutil
@@ -30,10 +31,19 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RHO, PHI_MAX, G = 2500.0, 0.6, 9.81  # the shipped scenes' sand
 
 
+def finished(out):
+    """Whether WORK/NAME holds a run that ended (run.json says so)."""
+    try:
+        with open(os.path.join(out, "run.json")) as f:
+            return json.load(f).get("status") == "finished"
+    except (OSError, ValueError):
+        return False
+
+
 def run(args, name, scene, sets):
     """Runs scenes/SCENE.toml with --set overrides into WORK/NAME (CSV frames too)."""
     out = os.path.join(args.work, name)
-    if args.reuse and os.path.exists(os.path.join(out, "run.json")):
+    if args.reuse and finished(out):
         return out
     shutil.rmtree(out, ignore_errors=True)
     cmd = [args.sablier, "run", os.path.join(ROOT, "scenes", scene + ".toml"), "--out", out,
