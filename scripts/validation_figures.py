@@ -98,8 +98,8 @@ def bed(args):
         sv = p["syy" if dim == 2 else "szz"]
         d = depth - p[up]
         ax.plot(sv, d, ".", ms=1, color="0.7", label="grains")
-        h = 0.025 if dim == 2 else 0.025
-        edges = np.arange(0, depth + h, h)
+        layer = 0.025
+        edges = np.arange(0, depth + layer, layer)
         mids, means = [], []
         for a, b in zip(edges[:-1], edges[1:]):
             sel = (d >= a) & (d < b)
@@ -140,7 +140,7 @@ def energy(args):
               f"{np.sum(s['decompaction_work']) / e0:.3f} E(0)")
     axes[0].set_xlabel("time (s)"), axes[0].set_ylabel("(kinetic + potential) / E(0)")
     axes[0].set_title("2D collapse in a box closed on every side")
-    axes[1].set_xlabel("time (s)"), axes[1].set_ylabel("cumulative decompaction work / E")
+    axes[1].set_xlabel("time (s)"), axes[1].set_ylabel("cumulative decompaction work / E(0)")
     axes[1].set_title("energy the decompaction may add (in the bound)")
     for ax in axes:
         ax.legend(fontsize=8)
