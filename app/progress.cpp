@@ -43,6 +43,7 @@ void Progress::step(double time, long long steps, int iterations, bool hit_cap) 
   iterations_ += iterations;
   ++frame_steps_;
   capped_ += hit_cap ? 1 : 0;
+  capped_total_ += hit_cap ? 1 : 0;
   // At most ten redraws a second: a terminal is slow, steps can be fast.
   if (!quiet_ && tty_ && Clock::now() - last_draw_ > std::chrono::milliseconds(100))
     draw(time, steps);

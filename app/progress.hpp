@@ -22,6 +22,9 @@ class Progress {
   void frame(int f, double time, long long steps);
   // Ends the terminal line, so that a message can follow on its own line.
   void finish();
+  // Steps of this run (since it started or resumed) whose solve stopped at
+  // max_iterations above the tolerance.
+  long long capped_steps() const { return capped_total_; }
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -37,7 +40,8 @@ class Progress {
   bool drawn_ = false;
   int last_iterations_ = 0;
   long long iterations_ = 0, frame_steps_ = 0;  // since the last frame
-  int capped_ = 0;
+  int capped_ = 0;                              // since the last frame
+  long long capped_total_ = 0;                  // since the run started or resumed
   double last_frame_wall_ = 0.0;
 };
 

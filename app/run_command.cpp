@@ -181,9 +181,17 @@ class Runner {
     }
     write_run_json("finished");
     progress.finish();
-    if (!set_.quiet)
+    if (!set_.quiet) {
       std::fprintf(stderr, "done: %d frames, %lld steps, outputs in %s\n", scene_.time.frames,
                    static_cast<long long>(sim_.steps()), set_.dir.c_str());
+      // Said once more at the end, where it is read: a capped step's
+      // stresses are the best iterate, not a solution to the tolerance.
+      if (progress.capped_steps() > 0)
+        std::fprintf(stderr,
+                     "note: %lld steps stopped at solver.max_iterations above "
+                     "solver.tolerance (column hit_cap of stats.csv)\n",
+                     progress.capped_steps());
+    }
     return 0;
   }
 

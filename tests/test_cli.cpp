@@ -51,6 +51,29 @@ TEST(Cli, RunWritesTheOutputs) {
   EXPECT_NE(resolved.find("resolution = [40, 10]"), std::string::npos) << resolved;
 }
 
+// The run's last lines say how many steps stopped at the solver's cap, and
+// nothing when none did.
+TEST(Cli, RunEndsByCountingTheCappedSteps) {
+  const fs::path capped = test::fresh_dir("cli_capped"),
+                 converged = test::fresh_dir("cli_converged");
+  const std::string frames = " --set time.frames=3";
+  const Result r = sablier("run " + scene_file("collapse2d.toml") + " --out " + capped.string() +
+                           frames + " --set solver.max_iterations=2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto rows = parse_stats_csv(read_file((capped / "stats.csv").string()));
+  long long hit = 0;
+  for (const StepStats& s : rows) hit += s.hit_cap ? 1 : 0;
+  ASSERT_GT(hit, 0);
+  EXPECT_NE(
+      r.output.find("note: " + std::to_string(hit) + " steps stopped at solver.max_iterations"),
+      std::string::npos)
+      << r.output;
+  const Result ok =
+      sablier("run " + scene_file("bed2d.toml") + " --out " + converged.string() + frames);
+  ASSERT_EQ(ok.code, 0) << ok.output;
+  EXPECT_EQ(ok.output.find("note:"), std::string::npos) << ok.output;
+}
+
 TEST(Cli, BadSceneWritesNothing) {
   const fs::path dir = test::fresh_dir("cli_bad");
   const fs::path bad = fs::temp_directory_path() / "sablier_cli_bad_scene.toml";
