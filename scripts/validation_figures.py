@@ -9,7 +9,7 @@ Each figure runs the shipped scenes with the overrides of the matching test
 runs' stats.csv and last particle frame, and writes a PNG into
 docs/images/validation/. The runs stay in --work (default
 /tmp/sablier_validation); --reuse skips the runs that finished there. All
-figures take about 10 minutes on 2 cores; each prints what it measured.
+figures take about 7 minutes on 2 cores; each prints what it measured.
 """
 import argparse
 import csv
