@@ -14,7 +14,6 @@
 // scale (measured, docs/method.md).
 #include <algorithm>
 
-#include "physics/shape.hpp"
 #include "physics/simulation.hpp"
 
 namespace sablier {
@@ -37,14 +36,6 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
     for (int a = 0; a < D; ++a)
       if (!(x[a] > 0.0 && x[a] < upper[a])) return false;
     return true;
-  };
-  // The base node of x's cell and the shape functions there (as P2G).
-  const auto stencil_at = [&](const Vec<D>& x, std::int64_t* base) {
-    const auto cc = grid_.cell_of(x);
-    *base = grid_.cell_base_node(cc);
-    Vec<D> local;
-    for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
-    return q1_stencil<D>(local, h);
   };
   move_lift_.assign(n, 0.0);
   for (int move = 0; move < moves; ++move) {

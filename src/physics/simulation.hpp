@@ -13,6 +13,7 @@
 #include "io/particle_frame.hpp"
 #include "physics/material.hpp"
 #include "physics/obstacle.hpp"
+#include "physics/shape.hpp"
 #include "scene/scene.hpp"
 #include "solver/cone_problem.hpp"
 
@@ -146,6 +147,15 @@ class Simulation {
   // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
   double mass_volume(std::size_t p) const {
     return materials_[particles_.material[p]].mass_ratio * particles_.volume[p];
+  }
+  // The Q1 shape functions at x, in x's cell, and that cell's base node.
+  Q1Stencil<D> stencil_at(const Vec<D>& x, std::int64_t* base) const {
+    const double h = grid_.h();
+    const auto cc = grid_.cell_of(x);
+    *base = grid_.cell_base_node(cc);
+    Vec<D> local;
+    for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
+    return q1_stencil<D>(local, h);
   }
 
   SceneConfig scene_;

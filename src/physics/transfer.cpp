@@ -293,11 +293,8 @@ void Simulation<D>::transfer_to_particles(double dt) {
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t p = 0; p < n; ++p) {
     Vec<D>& x = particles_.position[p];
-    const auto cc = grid_.cell_of(x);
-    const std::int64_t base = grid_.cell_base_node(cc);
-    Vec<D> local;
-    for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
-    const Q1Stencil<D> s = q1_stencil<D>(local, h);
+    std::int64_t base = 0;
+    const Q1Stencil<D> s = stencil_at(x, &base);
     Vec<D> u = Vec<D>::Zero();
     Mat<D> grad = Mat<D>::Zero();
     SymVec<D> lambda = SymVec<D>::Zero();
