@@ -62,7 +62,8 @@ mu_i = { delta_mu = 0.3, I0 = 0.3, grain_diameter = 2e-3 }
 tolerance = 1e-6
 max_iterations = 300
 anderson = 3
-decompaction_moves = 4
+decompaction = "push"
+decompaction_moves = 3
 [boundary]
 default = "stick"
 xmax = "slip"
@@ -167,6 +168,7 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
   EXPECT_EQ(a.solver.max_iterations, b.solver.max_iterations);
   EXPECT_EQ(a.solver.anderson, b.solver.anderson);
   EXPECT_EQ(a.solver.zone_rows, b.solver.zone_rows);
+  EXPECT_EQ(a.solver.decompaction, b.solver.decompaction);
   EXPECT_EQ(a.solver.decompaction_moves, b.solver.decompaction_moves);
   EXPECT_EQ(a.boundary.faces, b.boundary.faces);
   ASSERT_EQ(a.boundary.openings.size(), b.boundary.openings.size());

@@ -104,17 +104,17 @@ TEST(Materials, TwoLayerBedCarriesEachLayersWeight) {
 
 // -------------------------------------------------- two columns, two frictions
 
-// collapse2d.toml's channel (slip walls, stick floor, 1.25 cm cells); a
-// column 0.1 m wide and tall against each side wall, mirror images of each
-// other. The adaptive time step is global (it follows the fastest grain), so
+// collapse2d.toml's channel (slip walls, stick floor, 1.25 cm cells),
+// widened to 1.25 m; a column 0.1 m wide and tall against each side wall,
+// mirror images of each other. The adaptive time step is global (it follows the fastest grain), so
 // beside the fast column the slow one would take other steps than alone:
 // fixed steps (dt = 1/90 s, at most 0.6 cells of travel here). Measured with
 // adaptive steps instead: the deposit of the mu = 0.8 column then creeps
 // differently, 2.8% apart at 1.5 s (8.6% with 2 particles per cell).
 const std::string kChannel = R"(dimension = 2
 [grid]
-size = [1.0, 0.25]
-resolution = [80, 20]
+size = [1.25, 0.25]
+resolution = [100, 20]
 [material]
 density = 2500
 mu = 0.5
@@ -128,19 +128,19 @@ const std::string kLeft =
     "[[sand]]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.1, 0.1]\nparticles_per_cell = 3\n"
     "mu = 0.2\n";
 const std::string kRight =
-    "[[sand]]\nshape = \"box\"\nmin = [0.9, 0.0]\nmax = [1.0, 0.1]\nparticles_per_cell = 3\n"
+    "[[sand]]\nshape = \"box\"\nmin = [1.15, 0.0]\nmax = [1.25, 0.1]\nparticles_per_cell = 3\n"
     "mu = 0.8\n";
-constexpr double kColumnWidth = 0.1, kCollapseTime = 1.5, kStep = 1.0 / 90;
+constexpr double kChannelWidth = 1.25, kColumnWidth = 0.1, kCollapseTime = 1.5, kStep = 1.0 / 90;
 
 // Run-out (L - L0) of the grains of material `m`: the 99th percentile of
 // their distance from the wall they started against (x = 0 for `from_left`,
-// x = 1 otherwise), less the column's width; the percentile, not the
+// x = kChannelWidth otherwise), less the column's width; the percentile, not the
 // farthest grain, as in test_engine_physics.cpp's collapse test.
 double run_out(const Simulation<2>& sim, int m, bool from_left) {
   const Particles<2>& p = sim.particles();
   std::vector<double> d;
   for (std::size_t k = 0; k < p.size(); ++k)
-    if (p.material[k] == m) d.push_back(from_left ? p.position[k][0] : 1.0 - p.position[k][0]);
+    if (p.material[k] == m) d.push_back(from_left ? p.position[k][0] : kChannelWidth - p.position[k][0]);
   std::sort(d.begin(), d.end());
   return d[static_cast<std::size_t>(0.99 * (d.size() - 1))] - kColumnWidth;
 }
@@ -151,7 +151,7 @@ Simulation<2> collapsed(const std::string& text) {
   return sim;
 }
 
-// The columns are far apart (their fronts stay 0.4 m apart): each must
+// The columns are far apart (their fronts stay more than 0.3 m apart): each must
 // spread as it does alone, and the smoother one farther.
 TEST(Materials, ColumnsOfTwoFrictionsSpreadAsEachAlone) {
   const Simulation<2> both = collapsed(kChannel + kLeft + kRight);
@@ -165,7 +165,7 @@ TEST(Materials, ColumnsOfTwoFrictionsSpreadAsEachAlone) {
   EXPECT_GT(left, 2 * right);
   EXPECT_NEAR(left / left_alone, 1.0, 0.05);
   EXPECT_NEAR(right / right_alone, 1.0, 0.05);
-  EXPECT_GT(1.0 - left - right - 2 * kColumnWidth, 0.3) << "the columns came close";
+  EXPECT_GT(kChannelWidth - left - right - 2 * kColumnWidth, 0.3) << "the columns came close";
 }
 
 // ------------------------------------------------------------ bad materials

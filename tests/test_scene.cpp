@@ -59,7 +59,8 @@ TEST(SceneFile, EveryKey2D) {
   e.time = TimeConfig{60, 12, 4, 0.5};
   e.material = MaterialConfig{1500, 0.38, 0.62, 0.01, 20.0, 3.0, MuIConfig{0.3, 0.3, 2e-3}};
   e.solver = SolverConfig{1e-6, 300, 3};
-  e.solver.decompaction_moves = 4;
+  e.solver.decompaction = Decompaction::Push;
+  e.solver.decompaction_moves = 3;
   e.boundary.faces = {B::Stick, B::Slip, B::Stick, B::Free, B::Slip, B::Slip};
   e.boundary.openings = {Opening{YMin, v(0.9, 0), v(1.1, 0)}};
   e.sand = {SandConfig{SandShape::Cylinder, {}, {}, v(0.5, 0.5), 0.25, 0, 3, 0.5, v(1, -0.5)},
@@ -286,7 +287,8 @@ TEST(SceneFile, RandomDoublesRoundTripExactly) {
       x->material.mu_i->grain_diameter = 1e-3 * unit(rng) + 1e-12;
       x->solver.tolerance = unit(rng) * 0.5 + 1e-17;
       x->solver.zone_rows = static_cast<int>(5000 * unit(rng));
-      x->solver.decompaction_moves = static_cast<int>(17 * unit(rng));
+      x->solver.decompaction_moves = 1 + static_cast<int>(16 * unit(rng));
+      x->solver.decompaction = static_cast<Decompaction>(static_cast<int>(3 * unit(rng)));
       x->sand[0].jitter = unit(rng);
       x->sand[0].radius = 0.1 * unit(rng) + 0.02;  // holds particles: not an error
       x->sand[0].velocity[1] = (unit(rng) - 0.5) * 1e5;

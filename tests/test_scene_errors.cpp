@@ -142,7 +142,11 @@ std::vector<BadScene> time_material_solver_errors() {
       {"zone rows negative", with("[solver]\nzone_rows = -1\n"), "bad.toml:10: solver.zone_rows",
        "zone_rows >= 0"},
       {"too many decompaction moves", with("[solver]\ndecompaction_moves = 17\n"),
-       "bad.toml:10: solver.decompaction_moves", "0 <= decompaction_moves <= 16"},
+       "bad.toml:10: solver.decompaction_moves", "1 <= decompaction_moves <= 16"},
+      {"no decompaction moves", with("[solver]\ndecompaction_moves = 0\n"),
+       "bad.toml:10: solver.decompaction_moves", "1 <= decompaction_moves <= 16"},
+      {"decompaction enum", with("[solver]\ndecompaction = \"spread\"\n"),
+       "bad.toml:10: solver.decompaction", "allowed: \"move\", \"push\", \"clamp\""},
       {"iterations float", with("[solver]\nmax_iterations = 1e3\n"),
        "bad.toml:10: solver.max_iterations: expected an integer", ""},
   };

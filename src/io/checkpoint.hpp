@@ -25,7 +25,9 @@ struct CheckpointError : IoError {
 
 struct Checkpoint {
   // 2: the per-particle material index (several materials per scene).
-  static constexpr std::uint32_t kFormatVersion = 2;
+  // 3: same bytes, but solver.decompaction defaults to "move" since 0.2.0:
+  // a run started before would resume with other physics, so it is refused.
+  static constexpr std::uint32_t kFormatVersion = 3;
 
   int dimension = 2;
   std::uint64_t scene_hash = 0;  // fnv1a64 of the resolved scene text

@@ -1,8 +1,8 @@
-// Grains crowded beyond phi_max moved apart after advection
-// (`solver.decompaction_moves` > 0; docs/method.md, "What the decompaction
+// Grains crowded beyond phi_max moved apart after advection (the default,
+// `solver.decompaction = "move"`; docs/method.md, "What the decompaction
 // costs"). The MPM transfer lets grains crowd into a node beyond
-// phi_max V_j; pushing them apart through the cone problem (k_j < 0, the
-// default) adds kinetic energy at every step, so much that the 2D collapse
+// phi_max V_j; pushing them apart through the cone problem (k_j < 0,
+// `"push"`) adds kinetic energy at every step, so much that the 2D collapse
 // does not converge under grid refinement (docs/validation.md, "Known
 // limits"). Here the cone problem only clamps (METHOD.md step 5) and the
 // grains are moved instead, velocities untouched: each move takes the nodes'

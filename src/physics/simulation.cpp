@@ -89,11 +89,12 @@ void Simulation<D>::init_boundaries() {
 // warm start. Where a node is over-full (Phi_j > phi_max V_j) METHOD.md step 5
 // clamps k_j at zero rather than pushing grains apart in one step; a pure
 // clamp lets transfer errors accumulate (measured: phi up to 1.1 in the 2D
-// collapse, 3.4 in a frictionless dam break), so we push apart gradually:
-// k_j keeps kOverfullRelaxation of the excess per step. The energy this
-// injects is reported (StepInfo::restoring_work) and bounded in the tests.
-// With solver.decompaction_moves > 0 the clamp is pure and the grains are
-// moved apart after advection instead (decompaction.cpp).
+// collapse, 3.4 in a frictionless dam break). By default (solver.decompaction
+// = "move") the clamp is pure and the grains are moved apart after advection
+// (decompaction.cpp). With "push" k_j keeps kOverfullRelaxation of the
+// excess per step, pushing the grains apart through the cone problem; the
+// energy this injects is reported (StepInfo::restoring_work) and bounded in
+// the tests. "clamp" is METHOD.md's rule alone.
 template <int D>
 void Simulation<D>::build_rows(double dt) {
   ConeProblem<D>& P = problem_;
@@ -101,6 +102,7 @@ void Simulation<D>::build_rows(double dt) {
   const double inv_trace_dt = 1.0 / (trace_scale<D>() * dt);
   const int sand_rows = obstacle_row_start_;
   const bool with_obstacles = !obstacles_.empty();
+  const bool pushing = scene_.solver.decompaction == Decompaction::Push;
 #pragma omp parallel for schedule(static)
   for (int j = 0; j < sand_rows; ++j) {
     const std::int64_t node = P.node[j];
@@ -129,7 +131,7 @@ void Simulation<D>::build_rows(double dt) {
     // few percent, and counting that as over-fullness levitated a bed on a
     // plane 0.1 h above a node row (measured: rising at 4 mm/s, phi 0.64).
     const double excess = std::min(0.0, phi_max_ * vj - phi_j);
-    const double push = scene_.solver.decompaction_moves > 0 ? 0.0 : kOverfullRelaxation * excess;
+    const double push = pushing ? kOverfullRelaxation * excess : 0.0;
     P.k[j] = (room > 0.0 ? (cohesive ? 0.0 : room) : push) * inv_trace_dt;
     P.lambda[j] = warm_lambda_[node];
   }
@@ -289,7 +291,7 @@ StepInfo Simulation<D>::step(double dt) {
   }
   move_bodies(dt);
   transfer_to_particles(dt);
-  if (scene_.solver.decompaction_moves > 0)
+  if (scene_.solver.decompaction == Decompaction::Move)
     info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
   info.timings.advection = seconds_since(t0);
 

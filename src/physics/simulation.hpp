@@ -37,7 +37,7 @@ struct StepInfo {
   // J: bound on the energy the decompaction of over-full nodes may add this
   // step: 2 dt sum_j max(0, -lambda_N k_j) over k_j < 0 when the cone
   // problem pushes them apart; the work against gravity of the grains
-  // lifted when they are moved instead (solver.decompaction_moves).
+  // lifted when they are moved instead (solver.decompaction = "move").
   double restoring_work = 0.0;
   // Force the sand exerts on each [[obstacle]] over the step (N; N/m in 2D),
   // the reaction to the obstacle rows' stresses.
@@ -138,7 +138,7 @@ class Simulation {
   void attach_bodies(double dt);
   void move_bodies(double dt);
   void transfer_to_particles(double dt);
-  // solver.decompaction_moves > 0: moves grains out of over-full nodes
+  // solver.decompaction = "move": moves grains out of over-full nodes
   // after advection (decompaction.cpp); returns the work done against
   // gravity, J (J/m in 2D).
   double move_grains_apart(int moves, double dt);

@@ -59,6 +59,8 @@ struct MaterialConfig {
   std::optional<MuIConfig> mu_i;
 };
 
+enum class Decompaction { Move, Push, Clamp };
+
 struct SolverConfig {
   double tolerance = 1e-5;  // relative velocity change of the last sweep (docs/method.md)
   int max_iterations = 2000;
@@ -68,11 +70,15 @@ struct SolverConfig {
   // the Gauss-Seidel updates, so results depend on it, not on the threads.
   int zone_rows = 500;
   // How grains crowded beyond phi_max by transfer errors are spread out
-  // again (docs/method.md, "What the decompaction costs"): 0 pushes them
-  // apart through the cone problem, 10% of the excess per step; n > 0 moves
-  // them instead, n times per step after advection, velocities untouched,
-  // and the cone problem only clamps (METHOD.md step 5).
-  int decompaction_moves = 0;
+  // again (docs/method.md, "What the decompaction costs"). Move (the
+  // default): the cone problem only clamps (METHOD.md step 5) and the grains
+  // are moved apart decompaction_moves times per step after advection,
+  // velocities untouched; the results converge under grid refinement.
+  // Push: the cone problem pushes them apart, 10% of the excess per step
+  // (the default before 0.2.0; it does not converge under refinement).
+  // Clamp: METHOD.md's pure clamp and nothing else (over-compacts).
+  Decompaction decompaction = Decompaction::Move;
+  int decompaction_moves = 4;
 };
 
 struct TimeConfig {

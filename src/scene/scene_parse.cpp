@@ -28,6 +28,7 @@ using Names = std::vector<std::string>;
 
 const Names kFaces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
 const Names kBoundaryTypes{"stick", "slip", "free"};
+const Names kDecompactions{"move", "push", "clamp"};
 const Names kShapes2D{"box", "disk", "polygon"};
 const Names kShapes3D{"box", "cylinder", "sphere", "mesh"};
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -91,7 +92,7 @@ const std::vector<Field<SolverConfig>> kSolverFields{
     whole("max_iterations", &SolverConfig::max_iterations, closed(1, kInf)),
     whole("anderson", &SolverConfig::anderson, closed(0, 16)),
     whole("zone_rows", &SolverConfig::zone_rows, closed(0, kInf)),
-    whole("decompaction_moves", &SolverConfig::decompaction_moves, closed(0, 16)),
+    whole("decompaction_moves", &SolverConfig::decompaction_moves, closed(1, 16)),
 };
 const std::vector<Field<SandConfig>> kSandFields{
     whole("particles_per_cell", &SandConfig::particles_per_cell, closed(1, 8)),
@@ -123,6 +124,14 @@ void read_table(TableReader t, S& s, const std::vector<Field<S>>& fields) {
 template <class S>
 void add_keys(Names& keys, const std::string& prefix, const std::vector<Field<S>>& fields) {
   for (const Field<S>& f : fields) keys.push_back(prefix + f.key);
+}
+
+void read_solver(TableReader t, SolverConfig& s) {
+  const std::string rule = t.choice("decompaction", "move", kDecompactions);
+  s.decompaction = rule == "push"    ? Decompaction::Push
+                   : rule == "clamp" ? Decompaction::Clamp
+                                     : Decompaction::Move;
+  read_table(std::move(t), s, kSolverFields);
 }
 
 BoundaryType boundary_type(const std::string& s) {
@@ -336,7 +345,7 @@ SceneConfig read_scene(const toml::table& doc, const std::string& file, const Or
   read_grid(root.child("grid"), s);
   read_table(root.child("time"), s.time, kTimeFields);
   read_material(root.child("material"), s);
-  read_table(root.child("solver"), s.solver, kSolverFields);
+  read_solver(root.child("solver"), s.solver);
   read_boundary(root.child("boundary"), s);
   read_all_obstacles(root, s);  // before [[sand]]: seeding skips their insides
   read_all_spouts(root, s);
@@ -443,6 +452,7 @@ std::vector<std::string> known_scene_keys() {
   add_keys(keys, "material.", kMaterialFields);
   add_keys(keys, "material.mu_i.", kMuIFields);
   add_keys(keys, "solver.", kSolverFields);
+  keys.push_back("solver.decompaction");
   keys.push_back("boundary.default");
   for (const std::string& f : kFaces) keys.push_back("boundary." + f);
   for (const char* k : {"face", "min", "max"})

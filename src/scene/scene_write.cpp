@@ -147,10 +147,11 @@ std::string scene_to_toml(const SceneConfig& s) {
   out += fmt::format(
       "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nzone_rows = {}\n",
       num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, s.solver.zone_rows);
-  // Written only when set, so that the resolved text (and the hash a
-  // resumed run checks) of scenes without it stays what it was.
-  if (s.solver.decompaction_moves > 0)
-    out += fmt::format("decompaction_moves = {}\n", s.solver.decompaction_moves);
+  const Decompaction rule = s.solver.decompaction;
+  out += fmt::format("decompaction = \"{}\"\n", rule == Decompaction::Push    ? "push"
+                                                 : rule == Decompaction::Clamp ? "clamp"
+                                                                               : "move");
+  out += fmt::format("decompaction_moves = {}\n", s.solver.decompaction_moves);
   out += "\n[boundary]\n";
   for (int f = 0; f < 2 * d; ++f)
     out += fmt::format("{} = \"{}\"\n", faces[f], boundary_name(s.boundary.faces[f]));
