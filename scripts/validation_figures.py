@@ -121,12 +121,12 @@ def bed(args):
 
 
 def energy(args):
-    """Total energy in a closed box (EnergyNeverGrowsInAClosedBox, and WithMovedGrains)."""
+    """Total energy in a closed box (EnergyNeverGrowsInAClosedBox, and WithPushedGrains)."""
     closed = ["boundary.ymax=\"slip\"", "solver.tolerance=1e-6", "solver.max_iterations=20000",
               "time.cfl=0.5", "time.frames=30"]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for moves, label in [(0, "as shipped (push)"), (4, "decompaction_moves = 4")]:
-        out = run(args, f"energy_m{moves}", "collapse2d", closed + [f"solver.decompaction_moves={moves}"])
+    for rule, label in [("move", "as shipped (grains moved)"), ("push", "decompaction = \"push\"")]:
+        out = run(args, f"energy_{rule}", "collapse2d", closed + [f"solver.decompaction=\"{rule}\""])
         s, p0 = stats(out), frame(out, 0)
         # stats.csv has a row per step, after the step; E(0) is frame 0's: the
         # column at rest, its potential energy relative to y = 0.
@@ -303,13 +303,13 @@ def refinement(args):
     """Deposit profiles of the 2D collapse on four grids, as shipped and with moved grains."""
     fig, axes = plt.subplots(1, 2, figsize=(12, 4), sharey=True)
     grids = [(40, 10), (80, 20), (160, 40), (320, 80)]
-    for ax, (moves, ppc, title) in zip(axes, [(0, 3, "as shipped: grains pushed apart, 3 per cell"),
-                                             (4, 4, "decompaction_moves = 4, 4 grains per cell")]):
+    for ax, (rule, ppc, title) in zip(axes, [("push", 3, "decompaction = \"push\", 3 grains per cell"),
+                                            ("move", 4, "as shipped (grains moved), 4 grains per cell")]):
         previous = None
         for k, (nx, ny) in enumerate(grids):
-            out = run(args, f"refine_m{moves}_{nx}", "collapse2d",
+            out = run(args, f"refine_{rule}_{nx}", "collapse2d",
                       [f"grid.resolution=[{nx},{ny}]", "sand.0.jitter=0.5", "seed=1",
-                       f"sand.0.particles_per_cell={ppc}", f"solver.decompaction_moves={moves}",
+                       f"sand.0.particles_per_cell={ppc}", f"solver.decompaction=\"{rule}\"",
                        "time.frames=27"])
             p = frame(out)
             bins = np.arange(0, 0.8 + 1e-9, 0.02)
@@ -319,7 +319,7 @@ def refinement(args):
             runout = (percentile_front(p["x"]) - 0.25) / 0.25
             ax.step(bins[:-1], 1e3 * th, where="post", color=f"C{k}",
                     label=f"h = {1000 / nx:g} mm: run-out {runout:.2f}{gap}")
-            print(f"  moves {moves}, h = {1000 / nx:g} mm: run-out {runout:.2f}{gap}, median phi "
+            print(f"  {rule}, h = {1000 / nx:g} mm: run-out {runout:.2f}{gap}, median phi "
                   f"{np.median(p['phi']):.3f}")
             previous = th
         ax.set_title(title, fontsize=10), ax.set_xlabel("x (m)")

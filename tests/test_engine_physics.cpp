@@ -84,9 +84,13 @@ TEST(Physics, BedAtRest3D) { bed_at_rest<3>("bed3d.toml", 0.25); }
 // and G2P cannot raise the kinetic energy (Jensen). The only source is the
 // APIC P2G transfer, which can add at most the particles' affine energy
 // E_aff = 1/2 rho sum_p V_p sum_i N_i |B_p (x_i - x_p)|^2 (Cauchy-Schwarz).
-// Over-full nodes are decompressed gradually (k_j < 0, docs/method.md); that
-// term's power is bounded by -2 sum_j lambda_N k_j, reported per step as
-// restoring_work. So E(n+1) <= E(n) + E_aff(n) + restoring_work, up to the
+// The grains of over-full nodes are moved apart after advection (the default,
+// solver.decompaction = "move", docs/method.md): the moves change positions
+// only, and restoring_work is the work against gravity of the grains they
+// lift. With "push" over-full nodes are decompressed gradually through the
+// cone problem (k_j < 0); that term's power is bounded by
+// -2 sum_j lambda_N k_j, then reported as restoring_work. So
+// E(n+1) <= E(n) + E_aff(n) + restoring_work, up to the
 // solver's inexactness: the last
 // sweep changes the velocities by a relative amount `residual` in the
 // kinetic-energy norm, hence the slack below of tolerance times the kinetic
@@ -122,26 +126,24 @@ TEST(Physics, EnergyNeverGrowsInAClosedBox) {
   EXPECT_LT(check_energy_bound(s, 1.0), 1.0);
 }
 
-// The same bound when over-full nodes are not pushed apart by the cone
-// problem but their grains moved after advection (solver.decompaction_moves,
-// docs/method.md): the moves change positions only, and restoring_work is
-// then the work against gravity of the grains they lift.
-TEST(Physics, EnergyNeverGrowsInAClosedBoxWithMovedGrains) {
+// The same bound when the cone problem pushes over-full nodes apart
+// (solver.decompaction = "push", the default before 0.2.0).
+TEST(Physics, EnergyNeverGrowsInAClosedBoxWithPushedGrains) {
   const SceneConfig s = scene("collapse2d.toml", {"boundary.ymax=\"slip\"", "solver.tolerance=1e-6",
                                                   "solver.max_iterations=20000", "time.cfl=0.5",
-                                                  "solver.decompaction_moves=4"});
+                                                  "solver.decompaction=\"push\""});
   EXPECT_LT(check_energy_bound(s, 1.0), 1.0);
 }
 
-// Moving the grains keeps the volume fraction at phi_max, where the cone
-// problem alone (METHOD.md's pure clamp) lets the transfer crowd them: the
-// shipped 2D collapse (12.5 mm, 3 grains per cell and axis) at 0.9 s,
+// Moving the grains (the default) keeps the volume fraction at phi_max, where
+// the cone problem alone (METHOD.md's pure clamp) lets the transfer crowd
+// them: the shipped 2D collapse (12.5 mm, 3 grains per cell and axis) at 0.9 s,
 // median phi at the grains. Measured 2026-12-02: 0.623 with the pure clamp
 // (`sablier run`, seed 1, jitter 0.5), 0.602 with 4 moves (docs/method.md);
 // as this test steps, 0.6035, and 0.6044 since moves never oppose a grain's
 // velocity (seventh session).
 TEST(Physics, MovedGrainsHoldPhiMax) {
-  Simulation<2> sim(scene("collapse2d.toml", {"solver.decompaction_moves=4"}));
+  Simulation<2> sim(scene("collapse2d.toml", {}));
   run_until(sim, 0.9, 1.0 / 30);
   std::vector<double> phi(sim.particles().phi.begin(), sim.particles().phi.end());
   std::sort(phi.begin(), phi.end());
@@ -392,11 +394,12 @@ TEST(Physics, DeterministicWithJitterAndThreads) {
   EXPECT_NE(other.particles().position[0], Simulation<2>(s).particles().position[0]);
 }
 
-// The same with over-full nodes' grains moved apart (solver.decompaction_moves).
-TEST(Physics, MovedGrainsDeterministicWithThreads) {
+// The same with over-full nodes pushed apart by the cone problem
+// (solver.decompaction = "push").
+TEST(Physics, PushedGrainsDeterministicWithThreads) {
   const auto results = positions_by_threads(
       scene("collapse2d.toml",
-            {"sand.0.jitter=0.8", "seed=7", "solver.zone_rows=100", "solver.decompaction_moves=4"}),
+            {"sand.0.jitter=0.8", "seed=7", "solver.zone_rows=100", "solver.decompaction=\"push\""}),
       {1, 2});
   ASSERT_EQ(results[0].size(), results[1].size());
   for (std::size_t p = 0; p < results[0].size(); ++p)
