@@ -261,40 +261,41 @@ def silo(args):
     axes[0].set_title("silo2d: the rate does not depend on the fill")
     for ax, dim, ns in [(axes[1], 2, [4, 6, 10, 16]), (axes[2], 3, [3, 5, 7, 9])]:
         D, Q = [], []
+        h = 0.01 if dim == 2 else 0.0075  # the tests' cells
         for n in ns:
-            lo = lambda c, sign: c + sign * (0.5 * (n - 1) * 0.01 + 0.003)  # noqa: E731
+            lo = lambda c, sign: c + sign * (0.5 * (n - 1) + 0.3) * h  # noqa: E731
             if dim == 2:
                 sets = ["grid.size=[0.81,0.61]", "grid.resolution=[81,61]", "sand.0.max=[0.81,0.45]",
                         f"boundary.opening.0.min=[{lo(0.405, -1)},0.0]",
                         f"boundary.opening.0.max=[{lo(0.405, 1)},0.0]", "time.frames=18"]
                 vp, t0, t1 = (0.01 / 4) ** 2 * PHI_MAX, 0.2, 0.6
             else:
-                sets = ["grid.size=[0.3,0.3,0.2]", "grid.resolution=[30,30,20]",
+                sets = ["grid.size=[0.3,0.3,0.2025]", "grid.resolution=[40,40,27]",
                         "sand.0.max=[0.3,0.3,0.15]", "solver.tolerance=1e-4",
                         "solver.max_iterations=500",
                         f"boundary.opening.0.min=[{lo(0.15, -1)},{lo(0.15, -1)},0.0]",
                         f"boundary.opening.0.max=[{lo(0.15, 1)},{lo(0.15, 1)},0.0]", "time.frames=12"]
-                vp, t0, t1 = (0.01 / 2) ** 3 * PHI_MAX, 0.1, 0.4
+                vp, t0, t1 = (h / 2) ** 3 * PHI_MAX, 0.1, 0.4
             st = stats(run(args, f"beverloo{dim}d_{n}", f"silo{dim}d", sets))
             sel = (st["time"] >= t0 - 1e-9) & (st["time"] <= t1 + 1e-9)
             q = -np.polyfit(st["time"][sel], st["particles"][sel] * vp * RHO, 1)[0]
-            D.append(n * 0.01), Q.append(q)
+            D.append(n * h), Q.append(q)
         D, Q = np.array(D), np.array(Q)
         e = 1.5 if dim == 2 else 2.5
         K, D0 = fit_power(D, Q, e)
         C = K / (RHO * PHI_MAX * math.sqrt(G))
         x = np.linspace(0.8 * D.min(), 1.2 * D.max(), 50)
-        ax.loglog(D, Q, "o", color="C3", label="Sablier (1 cm cells)")
-        ax.loglog(x, K * (x - D0) ** e, "k-", label=f"C rho_b sqrt(g) (D - D0)^{e:g}: C = {C:.2f}, D0 = {D0 / 0.01:.2f} h")
+        ax.loglog(D, Q, "o", color="C3", label=f"Sablier ({1000 * h:g} mm cells)")
+        ax.loglog(x, K * (x - D0) ** e, "k-", label=f"C rho_b sqrt(g) (D - D0)^{e:g}: C = {C:.2f}, D0 = {D0 / h:.2f} h")
         Kl, D0l = fit_power(D, Q, e - 0.5)
         xl = x[x > D0l]
         ax.loglog(xl, Kl * (xl - D0l) ** (e - 0.5), "k:",
-                  label=f"best fit with a liquid's exponent {e - 0.5:g} (D0 = {D0l / 0.01:.1f} h)")
+                  label=f"best fit with a liquid's exponent {e - 0.5:g} (D0 = {D0l / h:.1f} h)")
         ax.set_xlabel("orifice width D (m)" + (", square side" if dim == 3 else ""))
         ax.set_ylabel("discharge (kg/s" + (" per m)" if dim == 2 else ")"))
         ax.set_title(f"Beverloo's law in {dim}D (silo{dim}d, widened bin)")
         ax.legend(fontsize=7)
-        print(f"  {dim}D: D = {D}, Q = {np.round(Q, 2)}, C = {C:.2f}, D0 = {D0 / 0.01:.2f} h")
+        print(f"  {dim}D: D = {D}, Q = {np.round(Q, 3)}, C = {C:.2f}, D0 = {D0 / h:.2f} h")
     fig.tight_layout()
     save(args, fig, "silo")
 

@@ -23,6 +23,8 @@ using test::scene;
 // liquid (Janssen screening; Beverloo et al. 1961; METHOD.md section 5). The
 // 2D silo drains through a 6 cm orifice; the mass flow over 0.3-0.9 s and
 // over 0.9-1.5 s must agree within 15% while the fill height drops.
+// Measured 2026-12-02 (eighth session, grains moved): 104.4 and 109.9 kg/s
+// per metre, 55% of the grains drained (with the push: 86.1 and 87.9).
 TEST(Validation, SiloDischargeDoesNotDependOnFillHeight) {
   Simulation<2> sim(scene("silo2d.toml"));
   const double m0 = sim.grain_mass();
@@ -49,7 +51,7 @@ TEST(Validation, SiloDischargeDoesNotDependOnFillHeight) {
 // area D^(d-1): Q ~ rho_b sqrt(g D) D^(d-1). The shipped silo bins, widened
 // so that they stay wider than 2.5 D (beyond which the rate does not depend
 // on the bin's width, Mankoc et al.), drain through openings of n free
-// floor nodes per side (1 cm cells; D = n h). For each exponent e,
+// floor nodes per side (D = n h). For each exponent e,
 // Q = K (D - D0)^e is fitted (K, D0 free: Q^(1/e) is linear in D) with the
 // squared misfit in log Q. Checks: Beverloo's e fits better than half a
 // unit below and above it (the liquid's exponent is one of them); with it
@@ -126,9 +128,13 @@ void check_beverloo(const std::vector<double>& D, const std::vector<double>& Q, 
   EXPECT_LE(std::abs(f.D0), 1.5 * h);
 }
 
-// 2D: the silo2d bin widened to 0.81 m, n = 4, 6, 10 and 16 free nodes,
+// 2D: the silo2d bin widened to 0.81 m (1 cm cells), n = 4, 6, 10 and 16 free nodes,
 // the discharge over 0.2-0.6 s (the bin stays at least half full).
-// Measured 2026-12-02 (4 grains per cell and axis): Q = 50.0, 91.1, 193.0
+// Measured 2026-12-02 (eighth session, grains moved, the default since
+// 0.2.0): Q = 56.4, 102.2, 217.0 and 435.6 kg/s per metre; with 3/2,
+// D0 = -0.13 h and the widths within 0.19% of the fit; misfits 0.077
+// (e = 1), 0.0000049 (3/2), 0.0076 (2); best free exponent 1.49. With the
+// push (seventh session, 4 grains per cell and axis): Q = 50.0, 91.1, 193.0
 // and 400.2 kg/s per metre of depth (the same widths run by `sablier run`,
 // whose sub-steps divide each frame equally: 50.6, 89.9, 193.5 and 401.7);
 // with 3/2, D0 = 0.04 h and the widths within 1.7% of the fit (3.1%);
@@ -209,7 +215,8 @@ TEST(Validation, SiloDischargeFollowsBeverloo3D) {
 // cut the discharge to 0.44 kg/s, against 0.70 with the push and 0.80 under
 // the pure clamp of METHOD.md (an experiment; measured 2026-12-02, seventh
 // session). Moves never oppose a grain's velocity (decompaction.cpp): 0.79
-// through `sablier run`, 0.77 as this test steps.
+// through `sablier run`, 0.77 as this test steps (eighth session: 0.768
+// against 0.779 under the pure clamp as this test steps).
 // The check: with 4 moves the discharge is at least 90% of the pure clamp's
 // (solver.decompaction = "clamp", METHOD.md's rule alone, which moves no
 // grain); the rule before the fix gave 55%.
@@ -234,8 +241,9 @@ TEST(Validation, MovedGrainsDoNotHoldBackASmallOrifice) {
 // 3 (the second regime), and lies within 20% of the fit for each a
 // (granular materials differ: in 2D channels Balmforth & Kerswell 2005
 // found the prefactors of such fits material-dependent). Measured
-// 2026-12-02 (seventh session): 0.55, 1.17, 2.17 and 2.90 (`sablier run`:
-// 0.55, 1.18, 2.14 and 2.97) against 0.62, 1.24, 2.26 and 2.77.
+// 2026-12-02 (eighth session, grains moved, the default since 0.2.0):
+// 0.57, 1.23, 2.20 and 3.04 against 0.62, 1.24, 2.26 and 2.77 (seventh
+// session, with the push: 0.55, 1.17, 2.17 and 2.90).
 TEST(Validation, AxisymmetricCollapseFollowsLube2004) {
   const double cases[4][2] = {{0.5, 0.08}, {1.0, 0.06}, {2.0, 0.045}, {3.0, 0.04}};  // a, R0
   std::vector<double> runout;
