@@ -112,6 +112,15 @@ void print_summary(const SceneConfig& s) {
               s.time.frames / s.time.fps,
               s.time.substeps > 0 ? fmt::format("{} sub-steps per frame", s.time.substeps).c_str()
                                   : fmt::format("adaptive sub-steps (cfl {})", s.time.cfl).c_str());
+  const SolverConfig& v = s.solver;
+  const std::string rule =
+      v.decompaction == Decompaction::Move
+          ? fmt::format("grains of over-full nodes moved apart {} times per step",
+                        v.decompaction_moves)
+          : v.decompaction == Decompaction::Push ? std::string("over-full nodes pushed apart")
+                                                 : std::string("over-full nodes clamped only");
+  std::printf("solver     tolerance %g, at most %d sweeps, Anderson depth %d; %s\n", v.tolerance,
+              v.max_iterations, v.anderson, rule.c_str());
   // Dense node fields (velocity, inverse mass, mask, momentum, warm start, mass,
   // row map) and per-row solver data, plus the particle arrays.
   constexpr int SD = sym_size(D);
