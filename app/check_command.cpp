@@ -117,8 +117,8 @@ void print_summary(const SceneConfig& s) {
       v.decompaction == Decompaction::Move
           ? fmt::format("grains of over-full nodes moved apart {} times per step",
                         v.decompaction_moves)
-          : v.decompaction == Decompaction::Push ? std::string("over-full nodes pushed apart")
-                                                 : std::string("over-full nodes clamped only");
+      : v.decompaction == Decompaction::Push ? std::string("over-full nodes pushed apart")
+                                             : std::string("over-full nodes clamped only");
   std::printf("solver     tolerance %g, at most %d sweeps, Anderson depth %d; %s\n", v.tolerance,
               v.max_iterations, v.anderson, rule.c_str());
   // Dense node fields (velocity, inverse mass, mask, momentum, warm start, mass,

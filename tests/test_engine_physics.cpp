@@ -398,8 +398,8 @@ TEST(Physics, DeterministicWithJitterAndThreads) {
 // (solver.decompaction = "push").
 TEST(Physics, PushedGrainsDeterministicWithThreads) {
   const auto results = positions_by_threads(
-      scene("collapse2d.toml",
-            {"sand.0.jitter=0.8", "seed=7", "solver.zone_rows=100", "solver.decompaction=\"push\""}),
+      scene("collapse2d.toml", {"sand.0.jitter=0.8", "seed=7", "solver.zone_rows=100",
+                                "solver.decompaction=\"push\""}),
       {1, 2});
   ASSERT_EQ(results[0].size(), results[1].size());
   for (std::size_t p = 0; p < results[0].size(); ++p)

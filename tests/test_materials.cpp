@@ -140,7 +140,8 @@ double run_out(const Simulation<2>& sim, int m, bool from_left) {
   const Particles<2>& p = sim.particles();
   std::vector<double> d;
   for (std::size_t k = 0; k < p.size(); ++k)
-    if (p.material[k] == m) d.push_back(from_left ? p.position[k][0] : kChannelWidth - p.position[k][0]);
+    if (p.material[k] == m)
+      d.push_back(from_left ? p.position[k][0] : kChannelWidth - p.position[k][0]);
   std::sort(d.begin(), d.end());
   return d[static_cast<std::size_t>(0.99 * (d.size() - 1))] - kColumnWidth;
 }

@@ -163,7 +163,8 @@ TEST(Validation, SiloDischargeFollowsBeverloo2D) {
 std::vector<std::string> silo3d_with_opening(int n, double h = 0.01) {
   constexpr double centre = 0.15;
   const std::string lo = opening_edge(centre, n, h, -1), hi = opening_edge(centre, n, h, 1);
-  const int across = static_cast<int>(std::lround(0.3 / h)), up = static_cast<int>(std::lround(0.2 / h));
+  const int across = static_cast<int>(std::lround(0.3 / h)),
+            up = static_cast<int>(std::lround(0.2 / h));
   return {"grid.size=[0.3,0.3," + std::to_string(up * h) + "]",
           "grid.resolution=[" + std::to_string(across) + "," + std::to_string(across) + "," +
               std::to_string(up) + "]",
@@ -288,9 +289,8 @@ TEST(Validation, AxisymmetricCollapseFollowsLube2004) {
 // "Known limits"); pushed with 4 per cell and axis, 2.1 and 9.2 mm from 12.5 mm
 // on: the push fails this test.
 std::vector<double> collapse_profile(const std::string& resolution) {
-  Simulation<2> sim(
-      scene("collapse2d.toml", {"grid.resolution=" + resolution, "sand.0.jitter=0.5", "seed=1",
-                                "sand.0.particles_per_cell=4"}));
+  Simulation<2> sim(scene("collapse2d.toml", {"grid.resolution=" + resolution, "sand.0.jitter=0.5",
+                                              "seed=1", "sand.0.particles_per_cell=4"}));
   test::run_until(sim, 0.9, 1.0 / 30);
   constexpr double bin = 0.02;
   std::vector<double> thickness(40, 0.0);

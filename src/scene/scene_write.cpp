@@ -149,8 +149,8 @@ std::string scene_to_toml(const SceneConfig& s) {
       num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, s.solver.zone_rows);
   const Decompaction rule = s.solver.decompaction;
   out += fmt::format("decompaction = \"{}\"\n", rule == Decompaction::Push    ? "push"
-                                                 : rule == Decompaction::Clamp ? "clamp"
-                                                                               : "move");
+                                                : rule == Decompaction::Clamp ? "clamp"
+                                                                              : "move");
   out += fmt::format("decompaction_moves = {}\n", s.solver.decompaction_moves);
   out += "\n[boundary]\n";
   for (int f = 0; f < 2 * d; ++f)
