@@ -106,8 +106,9 @@ TEST(Materials, TwoLayerBedCarriesEachLayersWeight) {
 
 // collapse2d.toml's channel (slip walls, stick floor, 1.25 cm cells),
 // widened to 1.25 m; a column 0.1 m wide and tall against each side wall,
-// mirror images of each other. The adaptive time step is global (it follows the fastest grain), so
-// beside the fast column the slow one would take other steps than alone:
+// mirror images of each other. The adaptive time step is global (it follows
+// the fastest grain), so beside the fast column the slow one would take
+// other steps than alone:
 // fixed steps (dt = 1/90 s, at most 0.6 cells of travel here). Measured with
 // adaptive steps instead: the deposit of the mu = 0.8 column then creeps
 // differently, 2.8% apart at 1.5 s (8.6% with 2 particles per cell).
@@ -134,8 +135,8 @@ constexpr double kChannelWidth = 1.25, kColumnWidth = 0.1, kCollapseTime = 1.5, 
 
 // Run-out (L - L0) of the grains of material `m`: the 99th percentile of
 // their distance from the wall they started against (x = 0 for `from_left`,
-// x = kChannelWidth otherwise), less the column's width; the percentile, not the
-// farthest grain, as in test_engine_physics.cpp's collapse test.
+// x = kChannelWidth otherwise), less the column's width; the percentile,
+// not the farthest grain, as in test_engine_physics.cpp's collapse test.
 double run_out(const Simulation<2>& sim, int m, bool from_left) {
   const Particles<2>& p = sim.particles();
   std::vector<double> d;

@@ -126,6 +126,10 @@ const char* boundary_name(BoundaryType t) {
   return t == BoundaryType::Stick ? "stick" : t == BoundaryType::Slip ? "slip" : "free";
 }
 
+const char* decompaction_name(Decompaction r) {
+  return r == Decompaction::Push ? "push" : r == Decompaction::Clamp ? "clamp" : "move";
+}
+
 }  // namespace
 
 std::string scene_to_toml(const SceneConfig& s) {
@@ -147,11 +151,8 @@ std::string scene_to_toml(const SceneConfig& s) {
   out += fmt::format(
       "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nzone_rows = {}\n",
       num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, s.solver.zone_rows);
-  const Decompaction rule = s.solver.decompaction;
-  out += fmt::format("decompaction = \"{}\"\n", rule == Decompaction::Push    ? "push"
-                                                : rule == Decompaction::Clamp ? "clamp"
-                                                                              : "move");
-  out += fmt::format("decompaction_moves = {}\n", s.solver.decompaction_moves);
+  out += fmt::format("decompaction = \"{}\"\ndecompaction_moves = {}\n",
+                     decompaction_name(s.solver.decompaction), s.solver.decompaction_moves);
   out += "\n[boundary]\n";
   for (int f = 0; f < 2 * d; ++f)
     out += fmt::format("{} = \"{}\"\n", faces[f], boundary_name(s.boundary.faces[f]));
