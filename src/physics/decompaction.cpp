@@ -12,6 +12,8 @@
 // move would leave the box or enter an obstacle stays. kMoveRate = 0.3: at
 // 0.5 and above the moves overshoot and the grains clump below the grid's
 // scale (measured, docs/method.md).
+#include <omp.h>
+
 #include <algorithm>
 
 #include "physics/simulation.hpp"
@@ -38,16 +40,37 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
     return true;
   };
   move_lift_.assign(n, 0.0);
+  move_excess_.resize(nodes);
+  move_base_.resize(n);
+  // Node index / top_stride: the node's layer along the last axis (+1).
+  const std::int64_t top_stride = grid_.node_stride(D - 1), layers = nodes / top_stride;
   for (int move = 0; move < moves; ++move) {
-    // Phi_i at the grains' present positions, summed in particle order (one
-    // thread: the order, hence the bits, do not depend on the thread count).
-    move_excess_.assign(nodes, 0.0);
+    // Phi_i at the grains' present positions. Each node adds up its grains in
+    // particle order, as one thread scattering them would, so the bits do not
+    // depend on the thread count: the grains' cells in parallel, then each
+    // thread scans the grains in order and adds only to the nodes of its own
+    // layers along the last axis.
+#pragma omp parallel for schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
-      const Vec<D>& x = particles_.position[p];
-      if (!inside(x)) continue;  // leaving through a free face
-      std::int64_t base = 0;
-      const Q1Stencil<D> s = stencil_at(x, &base);
-      for (int a = 0; a < NC; ++a) move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
+      const Vec<D>& x = particles_.position[p];  // leaving through a free face: -1
+      move_base_[p] = inside(x) ? grid_.cell_base_node(grid_.cell_of(x)) : -1;
+    }
+    std::fill(move_excess_.begin(), move_excess_.end(), 0.0);
+#pragma omp parallel
+    {
+      const std::int64_t team = omp_get_num_threads(), me = omp_get_thread_num();
+      const std::int64_t lo = layers * me / team, hi = layers * (me + 1) / team;
+      for (std::int64_t p = 0; p < n; ++p) {
+        const std::int64_t base = move_base_[p];
+        const std::int64_t layer = base / top_stride;  // the cell's nodes: this layer and the next
+        if (base < 0 || layer + 1 < lo || layer >= hi) continue;
+        std::int64_t again = 0;  // == base
+        const Q1Stencil<D> s = stencil_at(particles_.position[p], &again);
+        for (int a = 0; a < NC; ++a) {
+          const std::int64_t l = layer + ((a >> (D - 1)) & 1);
+          if (l >= lo && l < hi) move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
+        }
+      }
     }
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < nodes; ++i) {

@@ -183,7 +183,10 @@ class Simulation {
   std::vector<int> row_of_node_;      // stress row index or -1
   std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start
   std::vector<double> row_mu_sum_, row_cohesion_sum_;  // sum_p V_p N_j (mu_p, c_p)
-  std::vector<double> move_excess_, move_lift_;        // move_grains_apart: per node, per grain
+  // move_grains_apart (decompaction.cpp): per node, the relative excess; per
+  // grain, the lift and its cell's base node.
+  std::vector<double> move_excess_, move_lift_;
+  std::vector<std::int64_t> move_base_;
 
   // Obstacles (METHOD.md section 3): rows [obstacle_row_start_, rows) are
   // nodes within one cell of an obstacle (their normals are the first
