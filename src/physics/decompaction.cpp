@@ -72,18 +72,25 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
         }
       }
     }
-#pragma omp parallel for schedule(static)
+    bool crowded = false;
+#pragma omp parallel for schedule(static) reduction(|| : crowded)
     for (std::int64_t i = 0; i < nodes; ++i) {
       if (!(move_excess_[i] > 0.0)) continue;
       const double full = phi_max_ * grid_.node_volume(grid_.node_coords(i));
       move_excess_[i] = std::max(0.0, move_excess_[i] / full - 1.0);
+      crowded = crowded || move_excess_[i] > 0.0;
     }
+    if (!crowded) break;  // no node over-full: every move would be zero
 #pragma omp parallel for schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
+      const std::int64_t base = move_base_[p];
+      if (base < 0) continue;  // outside
+      bool near = false;       // a corner of its cell is over-full (else the move is zero)
+      for (int a = 0; a < NC; ++a) near = near || move_excess_[base + corner[a]] > 0.0;
+      if (!near) continue;
       Vec<D>& x = particles_.position[p];
-      if (!inside(x)) continue;
-      std::int64_t base = 0;
-      const Q1Stencil<D> s = stencil_at(x, &base);
+      std::int64_t again = 0;  // == base
+      const Q1Stencil<D> s = stencil_at(x, &again);
       Vec<D> grad = Vec<D>::Zero();
       for (int a = 0; a < NC; ++a) grad += move_excess_[base + corner[a]] * s.grad[a];
       if (grad.squaredNorm() == 0.0) continue;
