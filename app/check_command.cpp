@@ -75,6 +75,14 @@ void print_obstacles(const SceneConfig& s) {
         where = fmt::format("base centre {}, radius {:.6g} m, height {:.6g} m", point(o.center, d),
                             o.radius, o.height);
         break;
+      case ObstacleShape::Polygon:
+        where = fmt::format("{} corners within {} to {}", o.vertices.size(),
+                            point(o.mesh_lower, d), point(o.mesh_upper, d));
+        break;
+      case ObstacleShape::Mesh:
+        where = fmt::format("from \"{}\", within {} to {}", o.file_path, point(o.mesh_lower, d),
+                            point(o.mesh_upper, d));
+        break;
     }
     const std::string body =
         o.dynamic() ? fmt::format(", rigid body of density {:.6g} kg/m^3 starting at {} m/s",

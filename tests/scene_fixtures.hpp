@@ -37,7 +37,7 @@ height = 0.2
 )";
 
 // Every key set, 2D: a disk, a box with its own material, a polygon, a spout,
-// an orifice and the three 2D obstacles (away from the sand but for the
+// an orifice and the four 2D obstacle shapes (away from the sand but for the
 // plane, which cuts nothing of it).
 inline const std::string kFull2D = R"(dimension = 2
 seed = 42
@@ -120,6 +120,9 @@ center = [1.2, 0.7]
 radius = 0.04
 density = 7800
 velocity = [0.5, -1.0]
+[[obstacle]]
+shape = "polygon"
+vertices = [[0.6, 0.1], [0.75, 0.1], [0.7, 0.2]]
 )";
 
 inline std::string replace(std::string s, const std::string& from, const std::string& to) {
@@ -229,6 +232,12 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
     EXPECT_EQ(p.height, q.height);
     EXPECT_EQ(p.mu, q.mu);
     EXPECT_EQ(p.velocity, q.velocity);
+    EXPECT_EQ(p.vertices, q.vertices);
+    EXPECT_EQ(p.file_path, q.file_path);
+    EXPECT_EQ(p.scale, q.scale);
+    EXPECT_EQ(p.translate, q.translate);
+    EXPECT_EQ(p.polygon != nullptr, q.polygon != nullptr);
+    EXPECT_EQ(p.distance != nullptr, q.distance != nullptr);
   }
 }
 

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/polygon.hpp"
 #include "scene/scene.hpp"
 #include "scene_fixtures.hpp"
 
@@ -90,7 +91,12 @@ TEST(SceneFile, EveryKey2D) {
   body.radius = 0.04;
   body.density = 7800;
   body.velocity = v(0.5, -1.0);
-  e.obstacles = {plane, box, disk, body};
+  ObstacleConfig wedge;
+  wedge.shape = ObstacleShape::Polygon;
+  wedge.vertices = {v(0.6, 0.1), v(0.75, 0.1), v(0.7, 0.2)};
+  wedge.polygon = std::make_shared<const SolidPolygon>(
+      std::vector<SolidPolygon::Point2>{{0.6, 0.1}, {0.75, 0.1}, {0.7, 0.2}});
+  e.obstacles = {plane, box, disk, body, wedge};
   expect_same(parse_scene(kFull2D, "full.toml"), e);
 }
 
@@ -345,7 +351,9 @@ TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
                              "max = [0.2, 0.2, 0]\n[material]\n"
                              "mu_i = { delta_mu = 0.26, I0 = 0.279, grain_diameter = 1e-3 }\n"
                              "[[obstacle]]\nshape = \"cylinder\"\ncenter = [0.45, 0.2, 0.0]\n"
-                             "radius = 0.02\nheight = 0.1\n";
+                             "radius = 0.02\nheight = 0.1\n"
+                             "[[obstacle]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
+                             "\"\nscale = 0.05\ntranslate = [0.3, 0.02, 0.0]\n";
   std::set<std::string> written{"boundary.default"};
   for (const std::string& text : {kFull2D, full3d}) {
     const std::string resolved = scene_to_toml(parse_scene(text, "full.toml"));

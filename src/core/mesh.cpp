@@ -12,7 +12,9 @@
 #include "core/mesh.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <utility>
 
 namespace sablier {
 namespace {
@@ -36,6 +38,61 @@ double solid_angle(const Point3& a, const Point3& b, const Point3& c) {
   const double det = dot(a, cross(b, c));
   const double div = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
   return 2.0 * std::atan2(det, div);
+}
+
+Point3 along(const Point3& a, double s, const Point3& u) {
+  return {a[0] + s * u[0], a[1] + s * u[1], a[2] + s * u[2]};
+}
+double distance2(const Point3& a, const Point3& b) {
+  const Point3 d = sub(a, b);
+  return dot(d, d);
+}
+
+// The point of segment [a, b] nearest p (a itself for a zero-length one).
+Point3 closest_on_segment(const Point3& p, const Point3& a, const Point3& b) {
+  const Point3 ab = sub(b, a);
+  const double len2 = dot(ab, ab);
+  if (!(len2 > 0.0)) return a;
+  return along(a, std::clamp(dot(sub(p, a), ab) / len2, 0.0, 1.0), ab);
+}
+
+// The point of triangle (a, b, c) nearest p, by the Voronoi region of the
+// triangle that p falls in (Ericson, Real-Time Collision Detection, 2005,
+// 5.1.5): a vertex region when p lies behind both edges leaving that vertex,
+// an edge region when p lies between the edge's two end regions and outside
+// the edge (the projection of p is then on the line), else the face. The
+// signed quantities va, vb, vc are the barycentric weights of p's
+// projection onto the plane, each scaled by |ab x ac|^2; checking them in
+// this order needs only the six dot products below.
+Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
+  const Point3 ab = sub(b, a), ac = sub(c, a);
+  const Point3 ap = sub(p, a);
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Point3 bp = sub(p, b);
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return along(a, d1 / (d1 - d3), ab);
+  const Point3 cp = sub(p, c);
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return along(a, d2 / (d2 - d6), ac);
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+    return along(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), sub(c, b));
+  const double sum = va + vb + vc;  // |ab x ac|^2: zero for a degenerate triangle
+  if (!(sum > 0.0)) {
+    // A sliver that round-off let through to the face case: its nearest
+    // point is on one of its edges, and dividing by sum would give NaN.
+    Point3 best = closest_on_segment(p, a, b);
+    for (const Point3& q : {closest_on_segment(p, b, c), closest_on_segment(p, c, a)})
+      if (distance2(p, q) < distance2(p, best)) best = q;
+    return best;
+  }
+  const double v = vb / sum, w = vc / sum;
+  return {a[0] + v * ab[0] + w * ac[0], a[1] + v * ab[1] + w * ac[1], a[2] + v * ab[2] + w * ac[2]};
 }
 
 }  // namespace
@@ -171,6 +228,51 @@ bool SolidMesh::contains(const Point3& p) const {
   for (int a = 0; a < 3; ++a)
     if (p[a] < lo_[a] || p[a] > hi_[a]) return false;
   return std::abs(winding_number(p)) > 0.5;
+}
+
+// Depth-first branch and bound: a node's triangles are no nearer p than its
+// bounding sphere, max(0, |p - centre| - radius), so a node whose bound is
+// not below the best distance found so far cannot improve it. The nearer
+// child goes on top of the stack, so that a good best is found early and
+// most of the tree is cut; each entry keeps its bound, checked again when
+// popped since the best may have shrunk meanwhile.
+double SolidMesh::distance(const Point3& p, Point3* closest) const {
+  if (nodes_.empty()) return HUGE_VAL;
+  const auto bound = [&](const Node& n) {
+    return std::max(0.0, norm(sub(p, n.centre)) - n.radius);
+  };
+  // Each level pops one entry and pushes at most two, and a node is at
+  // depth <= kMaxDepth, so the stack never holds more than kMaxDepth + 1.
+  constexpr std::size_t kStack = 128;
+  static_assert(kStack >= kMaxDepth + 2, "the traversal stack must hold the deepest path");
+  std::array<std::int32_t, kStack> stack;
+  std::array<double, kStack> lower;
+  std::size_t top = 0;
+  stack[top] = 0;
+  lower[top++] = bound(nodes_[0]);
+  double best = HUGE_VAL, best2 = HUGE_VAL;  // distance and its square
+  Point3 nearest = tri_[0].a;
+  while (top > 0) {
+    --top;
+    if (lower[top] >= best) continue;
+    const Node& n = nodes_[stack[top]];
+    if (n.left < 0) {
+      for (std::int32_t k = n.first; k < n.first + n.count; ++k) {
+        const Point3 q = closest_on_triangle(p, tri_[k].a, tri_[k].b, tri_[k].c);
+        const double d2 = distance2(p, q);
+        if (d2 < best2) best2 = d2, best = std::sqrt(d2), nearest = q;
+      }
+      continue;
+    }
+    std::int32_t nearer = n.left, farther = n.right;
+    double near_lb = bound(nodes_[nearer]), far_lb = bound(nodes_[farther]);
+    if (far_lb < near_lb) std::swap(nearer, farther), std::swap(near_lb, far_lb);
+    assert(top + 2 <= kStack);
+    if (far_lb < best) stack[top] = farther, lower[top++] = far_lb;
+    if (near_lb < best) stack[top] = nearer, lower[top++] = near_lb;
+  }
+  if (closest) *closest = nearest;
+  return best;
 }
 
 }  // namespace sablier

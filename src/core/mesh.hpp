@@ -1,7 +1,8 @@
 // Closed triangle meshes as sand regions: reading OBJ and STL files
-// (mesh_file.cpp), checking that a mesh is closed, and the inside test by the
+// (mesh_file.cpp), checking that a mesh is closed, the inside test by the
 // generalised winding number (Jacobson et al. 2013), evaluated with a
-// bounding-volume tree and a far-field expansion (Barill et al. 2018).
+// bounding-volume tree and a far-field expansion (Barill et al. 2018), and
+// the distance to the surface over the same tree.
 #pragma once
 
 #include <array>
@@ -35,8 +36,8 @@ TriangleMesh read_mesh_file(const std::string& path);
 // Edges not shared by exactly two triangles (0 for a closed mesh).
 std::size_t open_edge_count(const TriangleMesh& mesh);
 
-// The inside test of a closed mesh, built once; queries allocate nothing and
-// may run concurrently.
+// The inside test of a closed mesh and the distance to its surface, built
+// once; queries allocate nothing and may run concurrently.
 class SolidMesh {
  public:
   explicit SolidMesh(const TriangleMesh& mesh);
@@ -47,6 +48,12 @@ class SolidMesh {
   double winding_number(const Point3& p) const;
   // |winding number| > 1/2: meshes oriented either way fill the same.
   bool contains(const Point3& p) const;
+  // Distance from p to the surface (m), and the surface's nearest point in
+  // *closest when given: branch and bound over the tree (a node whose
+  // bounding sphere is farther than the best distance so far is skipped),
+  // exact up to round-off. Allocates nothing; may run concurrently. An
+  // empty mesh is infinitely far (HUGE_VAL, *closest left as it was).
+  double distance(const Point3& p, Point3* closest = nullptr) const;
 
   const Point3& lower() const { return lo_; }
   const Point3& upper() const { return hi_; }

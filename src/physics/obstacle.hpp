@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
+#include "core/distance_grid.hpp"
+#include "core/polygon.hpp"
 #include "core/tensor.hpp"
 #include "scene/scene.hpp"
 
@@ -16,10 +19,14 @@ namespace sablier {
 template <int D>
 struct Obstacle {
   ObstacleShape shape = ObstacleShape::Plane;
-  Vec<D> a = Vec<D>::Zero();  // plane: point; box: min; ball, cylinder: centre (of the base)
+  // plane: point; box: min; ball, cylinder: centre (of the base); polygon,
+  // mesh: the translation of their solid (zero unless it moves)
+  Vec<D> a = Vec<D>::Zero();
   Vec<D> b = Vec<D>::Zero();  // plane: unit normal; box: max
   double radius = 0.0;
   double height = 0.0;
+  std::shared_ptr<const SolidPolygon> polygon;  // 2D polygons
+  std::shared_ptr<const DistanceGrid> distance;  // 3D meshes
   double mu = 0.5;  // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
   // A rigid body (a ball with a density): its state is advanced by the
@@ -50,8 +57,13 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
       case ObstacleShape::Cylinder:
         o.a[k] = c.center[k];
         break;
+      case ObstacleShape::Polygon:
+      case ObstacleShape::Mesh:
+        break;
     }
   }
+  o.polygon = c.polygon;
+  o.distance = c.distance;
   if (c.shape == ObstacleShape::Plane) o.b.normalize();
   o.radius = c.radius;
   o.height = c.height;
@@ -125,6 +137,24 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
       *normal = Vec<D>::Zero();
       (*normal)[axis] = x[axis] < centre[axis] ? -1.0 : 1.0;
       return q[axis];
+    }
+    case ObstacleShape::Polygon: {
+      if constexpr (D == 2) {
+        double nx = 0.0, ny = 0.0;
+        const double s = o.polygon->signed_distance(x[0] - o.a[0], x[1] - o.a[1], &nx, &ny);
+        *normal = Vec<D>(nx, ny);
+        return s;
+      }
+      break;
+    }
+    case ObstacleShape::Mesh: {
+      if constexpr (D == 3) {
+        Point3 n{};
+        const double s = o.distance->signed_distance({x[0] - o.a[0], x[1] - o.a[1], x[2] - o.a[2]}, &n);
+        *normal = Vec<D>(n[0], n[1], n[2]);
+        return s;
+      }
+      break;
     }
     case ObstacleShape::Cylinder: {
       // 3D only: axis along the last coordinate, from a[D-1] to a[D-1] + height.

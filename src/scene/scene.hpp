@@ -148,8 +148,11 @@ struct SpoutConfig {
 // that the sand pushes.
 // "disk" (2D) and "sphere" (3D) are both Ball; Cylinder is 3D only (axis
 // along z, `center` the centre of its base). A plane's solid side is the one
-// its normal points away from.
-enum class ObstacleShape { Plane, Box, Ball, Cylinder };
+// its normal points away from. Polygon is 2D only, Mesh 3D only.
+enum class ObstacleShape { Plane, Box, Ball, Cylinder, Polygon, Mesh };
+
+class SolidPolygon;  // core/polygon.hpp
+class DistanceGrid;  // core/distance_grid.hpp
 
 struct ObstacleConfig {
   ObstacleShape shape = ObstacleShape::Plane;
@@ -160,6 +163,19 @@ struct ObstacleConfig {
   Vec3d center{0, 0, 0};  // ball: centre; cylinder: centre of the base, m
   double radius = 0.0;    // ball / cylinder, m
   double height = 0.0;    // cylinder, m
+  // Polygon (2D): the corners in order, either orientation (z unused), and
+  // the solid they bound.
+  std::vector<Vec3d> vertices{};
+  std::shared_ptr<const SolidPolygon> polygon{};
+  // Mesh (3D): as for [[sand]] meshes (the file as given, its absolute path,
+  // x -> scale x + translate), and its signed distance sampled at half the
+  // cell size over the box (read by the parser, which knows the grid).
+  std::string file{};
+  std::string file_path{};
+  double scale = 1.0;
+  Vec3d translate{0, 0, 0};
+  std::shared_ptr<const DistanceGrid> distance{};
+  Vec3d mesh_lower{0, 0, 0}, mesh_upper{0, 0, 0};  // the transformed mesh's bounds, m
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
   Vec3d velocity{0, 0, 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
   // kg/m^3: 0 for a fixed (or kinematic) obstacle; > 0 makes a disk or

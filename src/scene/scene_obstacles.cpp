@@ -7,9 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <utility>
 
+#include "core/distance_grid.hpp"
+#include "core/mesh.hpp"
+#include "core/polygon.hpp"
 #include "physics/obstacle.hpp"
+#include "scene/scene_sources.hpp"
 
 namespace sablier {
 namespace {
@@ -20,9 +25,10 @@ const Range kPositive{0.0, kInf, true, false};
 const Range kMuRange{0.0, kMaxObstacleMu, false, false};
 const Range kDensityRange{0.0, 1e5, true, false};  // kg/m^3: above 0, up to 100 t/m^3
 
-const Names kShapes2D{"plane", "box", "disk"};
-const Names kShapes3D{"plane", "box", "sphere", "cylinder"};
-const Names kGeometryKeys{"point", "normal", "min", "max", "center", "radius", "height"};
+const Names kShapes2D{"plane", "box", "disk", "polygon"};
+const Names kShapes3D{"plane", "box", "sphere", "cylinder", "mesh"};
+const Names kGeometryKeys{"point", "normal", "min",  "max",  "center",   "radius",
+                          "height", "vertices", "file", "scale", "translate"};
 
 char axis_name(int a) { return "xyz"[a]; }
 
@@ -31,11 +37,13 @@ Names shape_keys(const std::string& shape) {
   if (shape == "plane") return {"point", "normal"};
   if (shape == "box") return {"min", "max"};
   if (shape == "cylinder") return {"center", "radius", "height"};
+  if (shape == "polygon") return {"vertices"};
+  if (shape == "mesh") return {"file", "scale", "translate"};
   return {"center", "radius"};  // disk, sphere
 }
 
 // Keys of another shape are errors, as in [[sand]] blocks.
-void reject_other_shape_keys(TableReader& t, const std::string& shape) {
+void reject_other_obstacle_keys(TableReader& t, const std::string& shape) {
   const Names mine = shape_keys(shape);
   for (const std::string& k : kGeometryKeys)
     if (std::find(mine.begin(), mine.end(), k) == mine.end())
@@ -97,14 +105,21 @@ void check_plane_reaches_box(TableReader& t, const ObstacleConfig& o, const Scen
 void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const SceneConfig& s) {
   for (int a = 0; a < s.dimension; ++a) {
     double lo = o.min[a], hi = o.max[a];
-    if (o.shape != ObstacleShape::Box) {
+    if (o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh) {
+      lo = o.mesh_lower[a];
+      hi = o.mesh_upper[a];
+    } else if (o.shape != ObstacleShape::Box) {
       const bool axial = o.shape == ObstacleShape::Cylinder && a == 2;
       lo = axial ? o.center[a] : o.center[a] - o.radius;
       hi = axial ? o.center[a] + o.height : o.center[a] + o.radius;
     }
     const double eps = 1e-12 * s.size[a];
     if (hi >= -eps && lo <= s.size[a] + eps) continue;
-    const std::string key = o.shape != ObstacleShape::Box ? "center" : hi < 0.0 ? "max" : "min";
+    const std::string key = o.shape == ObstacleShape::Polygon ? "vertices"
+                            : o.shape == ObstacleShape::Mesh  ? (t.has("translate") ? "translate" : "file")
+                            : o.shape != ObstacleShape::Box   ? "center"
+                            : hi < 0.0                        ? "max"
+                                                              : "min";
     t.fail_at(t.node(key), key,
               fmt::format("the obstacle spans [{}, {}] on {}, outside the box [0, {}] "
                           "(grid.size); allowed: an obstacle that reaches into or touches the "
@@ -135,7 +150,9 @@ void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
                               obstacle_shape_name(o.shape, d)));
 }
 
-void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o, int d) {
+void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
+                   const SceneConfig& s, std::shared_ptr<const SolidMesh>& mesh) {
+  const int d = s.dimension;
   if (shape == "plane") {
     o.shape = ObstacleShape::Plane;
     o.point = t.vector("point", d, std::nullopt, Range());
@@ -150,12 +167,59 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o, 
                   fmt::format("empty box: max = {} on {} is not above min = {}; allowed: min < "
                               "max on every axis",
                               o.max[a], axis_name(a), o.min[a]));
+  } else if (shape == "polygon") {
+    o.shape = ObstacleShape::Polygon;
+    o.vertices = read_polygon_vertices(t);
+    std::vector<SolidPolygon::Point2> corners;
+    for (const Vec3d& v : o.vertices) corners.push_back({v[0], v[1]});
+    o.polygon = std::make_shared<const SolidPolygon>(std::move(corners));
+    for (int a = 0; a < 2; ++a) {
+      o.mesh_lower[a] = o.polygon->lower()[a];
+      o.mesh_upper[a] = o.polygon->upper()[a];
+    }
+  } else if (shape == "mesh") {
+    o.shape = ObstacleShape::Mesh;
+    MeshKeys m = read_mesh_keys(t, s);
+    o.file = std::move(m.file);
+    o.file_path = std::move(m.file_path);
+    o.scale = m.scale;
+    o.translate = m.translate;
+    for (int a = 0; a < 3; ++a) {
+      o.mesh_lower[a] = m.mesh->lower()[a];
+      o.mesh_upper[a] = m.mesh->upper()[a];
+    }
+    mesh = std::move(m.mesh);
   } else {
     o.shape = shape == "cylinder" ? ObstacleShape::Cylinder : ObstacleShape::Ball;
     o.center = t.vector("center", d, std::nullopt, Range());
     o.radius = t.number("radius", std::nullopt, kPositive);
     if (shape == "cylinder") o.height = t.number("height", std::nullopt, kPositive);
   }
+}
+
+// A mesh's signed distance, sampled at half the cell size over its bounds
+// within 3 cells, cut to the box within 3 cells (physics/obstacle.hpp): the
+// contact rows look one cell out from the box's nodes, the grains and the
+// moves no further than the box.
+std::shared_ptr<const DistanceGrid> sample_distance(TableReader& t, const SolidMesh& mesh,
+                                                    const ObstacleConfig& o,
+                                                    const SceneConfig& s) {
+  const double h = s.cell_size(), margin = 3.0 * h;
+  Point3 lo{}, hi{};
+  double samples = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(o.mesh_lower[a] - margin, -margin);
+    hi[a] = std::min(o.mesh_upper[a] + margin, s.size[a] + margin);
+    samples *= std::ceil((hi[a] - lo[a]) / (0.5 * h)) + 1.0;
+  }
+  constexpr double kMaxSamples = 1e8;  // 800 MB of doubles
+  if (samples > kMaxSamples)
+    t.fail_at(t.node("file"), "file",
+              fmt::format("the mesh's distance would be sampled at {:.3g} points (half the cell "
+                          "size over its bounds in the box); allowed: at most {:.0e} (a coarser "
+                          "grid or a smaller mesh)",
+                          samples, kMaxSamples));
+  return std::make_shared<const DistanceGrid>(mesh, lo, hi, 0.5 * h);
 }
 
 // How far a rigid ball `b` reaches into the solid `o` (m; <= 0 when clear
@@ -190,9 +254,11 @@ void check_bodies_clear(TableReader& t, const ObstacleConfig& o, const SceneConf
     const ObstacleConfig& other = o.dynamic() ? p : o;
     const double depth = d == 2 ? overlap<2>(body, other) : overlap<3>(body, other);
     if (depth <= 1e-9 * length(s.size)) continue;
-    const std::string key = o.shape == ObstacleShape::Plane ? "point"
-                            : o.shape == ObstacleShape::Box ? "min"
-                                                            : "center";
+    const std::string key = o.shape == ObstacleShape::Plane     ? "point"
+                            : o.shape == ObstacleShape::Box     ? "min"
+                            : o.shape == ObstacleShape::Polygon ? "vertices"
+                            : o.shape == ObstacleShape::Mesh    ? "file"
+                                                                : "center";
     t.fail_at(t.node(key), key,
               fmt::format("overlaps obstacle[{}] (a {}{}) by {} m at the start; allowed: rigid "
                           "bodies clear of the other obstacles and bodies (touching is clear)",
@@ -204,10 +270,11 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   const int d = s.dimension;
   const std::string shape =
       dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D,
-                       d == 2 ? Names{"sphere", "cylinder"} : Names{"disk"}, d);
-  reject_other_shape_keys(t, shape);
+                       d == 2 ? Names{"sphere", "cylinder", "mesh"} : Names{"disk", "polygon"}, d);
+  reject_other_obstacle_keys(t, shape);
   ObstacleConfig o;
-  read_geometry(t, shape, o, d);
+  std::shared_ptr<const SolidMesh> mesh;
+  read_geometry(t, shape, o, s, mesh);
   o.mu = read_mu(t);
   o.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
   if (t.has("density")) {
@@ -224,6 +291,7 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   } else {
     check_bounds_reach_box(t, o, s);
   }
+  if (mesh) o.distance = sample_distance(t, *mesh, o, s);
   check_bodies_clear(t, o, s);
   return o;
 }
@@ -247,6 +315,10 @@ const char* obstacle_shape_name(ObstacleShape shape, int dimension) {
       return dimension == 2 ? "disk" : "sphere";
     case ObstacleShape::Cylinder:
       return "cylinder";
+    case ObstacleShape::Polygon:
+      return "polygon";
+    case ObstacleShape::Mesh:
+      return "mesh";
   }
   return "";
 }

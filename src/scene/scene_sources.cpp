@@ -97,25 +97,11 @@ double twice_area(const std::vector<Vec3d>& v) {
 
 void read_polygon(TableReader& t, SandConfig& c, const SceneConfig& s) {
   c.shape = SandShape::Polygon;
-  const std::string allowed = "an array of at least 3 points [x, y] (a simple polygon)";
-  const toml::node* n = t.node("vertices");
-  if (!n) t.fail("vertices", "missing; required: " + allowed);
-  const toml::array* list = n->as_array();
-  if (!list) t.fail_at(n, "vertices", "expected an array of points; allowed: " + allowed);
-  if (list->size() < 3)
-    t.fail_at(n, "vertices", fmt::format("{} vertices; allowed: {}", list->size(), allowed));
-  c.vertices.clear();
-  for (std::size_t k = 0; k < list->size(); ++k)
-    c.vertices.push_back(polygon_vertex(t, *list->get(k), k));
+  c.vertices = read_polygon_vertices(t);
   Vec3d lo = c.vertices[0], hi = c.vertices[0];
   for (const Vec3d& v : c.vertices)
     for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], v[a]), hi[a] = std::max(hi[a], v[a]);
   for (int a = 0; a < 2; ++a) check_inside(t, s, "vertices", lo[a], hi[a], a);
-  if (std::abs(twice_area(c.vertices)) <=
-      1e-12 * (hi[0] - lo[0] + hi[1] - lo[1]) * (hi[0] - lo[0] + hi[1] - lo[1]))
-    t.fail_at(n, "vertices",
-              "the polygon has zero area (its vertices are collinear or repeated); allowed: a "
-              "simple polygon of positive area");
 }
 
 // The mesh file's path: relative paths are relative to the scene file's folder.
@@ -128,31 +114,12 @@ std::string mesh_path(const std::string& file, const SceneConfig& s) {
 
 void read_mesh(TableReader& t, SandConfig& c, const SceneConfig& s) {
   c.shape = SandShape::Mesh;
-  const std::string allowed =
-      "a closed triangle mesh file, OBJ (v and f lines) or STL (binary or ASCII)";
-  const toml::node* n = t.node("file");
-  if (!n) t.fail("file", "missing; required: " + allowed);
-  if (!n->is_string()) t.fail_at(n, "file", "expected a file name (a string); allowed: " + allowed);
-  c.file = n->as_string()->get();
-  c.file_path = mesh_path(c.file, s);
-  c.scale = t.number("scale", 1.0, positive());
-  c.translate = t.vector("translate", 3, Vec3d{0, 0, 0}, Range());
-  TriangleMesh mesh;
-  try {
-    mesh = read_mesh_file(c.file_path);
-  } catch (const MeshError& e) {
-    t.fail_at(n, "file",
-              fmt::format("cannot use the mesh file \"{}\": {}; allowed: {}", c.file_path, e.what(),
-                          allowed));
-  }
-  if (const std::size_t open = open_edge_count(mesh))
-    t.fail_at(n, "file",
-              fmt::format("the mesh in \"{}\" is not closed: {} open edge{} (each edge must be "
-                          "shared by exactly two triangles); allowed: {}",
-                          c.file_path, open, open == 1 ? "" : "s", allowed));
-  for (Point3& v : mesh.vertices)
-    for (int a = 0; a < 3; ++a) v[a] = c.scale * v[a] + c.translate[a];
-  c.mesh = std::make_shared<const SolidMesh>(mesh);
+  MeshKeys m = read_mesh_keys(t, s);
+  c.file = std::move(m.file);
+  c.file_path = std::move(m.file_path);
+  c.scale = m.scale;
+  c.translate = m.translate;
+  c.mesh = std::move(m.mesh);
   for (int a = 0; a < 3; ++a)
     check_inside(t, s, t.has("translate") ? "translate" : "file", c.mesh->lower()[a],
                  c.mesh->upper()[a], a);
@@ -234,6 +201,58 @@ bool seeds_without_obstacles(const SceneConfig& s, std::size_t k) {
 }
 
 }  // namespace
+
+std::vector<Vec3d> read_polygon_vertices(TableReader& t) {
+  const std::string allowed = "an array of at least 3 points [x, y] (a simple polygon)";
+  const toml::node* n = t.node("vertices");
+  if (!n) t.fail("vertices", "missing; required: " + allowed);
+  const toml::array* list = n->as_array();
+  if (!list) t.fail_at(n, "vertices", "expected an array of points; allowed: " + allowed);
+  if (list->size() < 3)
+    t.fail_at(n, "vertices", fmt::format("{} vertices; allowed: {}", list->size(), allowed));
+  std::vector<Vec3d> vertices;
+  for (std::size_t k = 0; k < list->size(); ++k)
+    vertices.push_back(polygon_vertex(t, *list->get(k), k));
+  Vec3d lo = vertices[0], hi = vertices[0];
+  for (const Vec3d& v : vertices)
+    for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], v[a]), hi[a] = std::max(hi[a], v[a]);
+  if (std::abs(twice_area(vertices)) <=
+      1e-12 * (hi[0] - lo[0] + hi[1] - lo[1]) * (hi[0] - lo[0] + hi[1] - lo[1]))
+    t.fail_at(n, "vertices",
+              "the polygon has zero area (its vertices are collinear or repeated); allowed: a "
+              "simple polygon of positive area");
+  return vertices;
+}
+
+MeshKeys read_mesh_keys(TableReader& t, const SceneConfig& s) {
+  const std::string allowed =
+      "a closed triangle mesh file, OBJ (v and f lines) or STL (binary or ASCII)";
+  const toml::node* n = t.node("file");
+  if (!n) t.fail("file", "missing; required: " + allowed);
+  if (!n->is_string()) t.fail_at(n, "file", "expected a file name (a string); allowed: " + allowed);
+  MeshKeys m;
+  m.file = n->as_string()->get();
+  m.file_path = mesh_path(m.file, s);
+  m.scale = t.number("scale", 1.0, positive());
+  m.translate = t.vector("translate", 3, Vec3d{0, 0, 0}, Range());
+  TriangleMesh mesh;
+  try {
+    mesh = read_mesh_file(m.file_path);
+  } catch (const MeshError& e) {
+    t.fail_at(n, "file",
+              fmt::format("cannot use the mesh file \"{}\": {}; allowed: {}", m.file_path, e.what(),
+                          allowed));
+  }
+  if (const std::size_t open = open_edge_count(mesh))
+    t.fail_at(n, "file",
+              fmt::format("the mesh in \"{}\" is not closed: {} open edge{} (each edge must be "
+                          "shared by exactly two triangles); allowed: {}",
+                          m.file_path, open, open == 1 ? "" : "s", allowed));
+  for (Point3& v : mesh.vertices)
+    for (int a = 0; a < 3; ++a) v[a] = m.scale * v[a] + m.translate[a];
+  m.mesh = std::make_shared<const SolidMesh>(mesh);
+  return m;
+}
 
 std::vector<std::string> shapes_of_other_dimension(int dimension) {
   return dimension == 2 ? Names{"cylinder", "sphere", "mesh"} : Names{"disk", "polygon"};

@@ -3,7 +3,9 @@
 // these. Errors are one-line SceneErrors, like every scene error.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 #include "scene/scene_reader.hpp"
@@ -20,6 +22,20 @@ void reject_other_shape_keys(TableReader& t, const std::string& shape);
 // "sphere" (3D), "polygon" (2D) or "mesh" (3D).
 void read_source_shape(TableReader& t, const std::string& shape, SandConfig& c,
                        const SceneConfig& s);
+
+// A polygon's `vertices` (of a [[sand]] or [[obstacle]] block): at least 3
+// finite points [x, y] enclosing a positive area (z is 0).
+std::vector<Vec3d> read_polygon_vertices(TableReader& t);
+
+// A mesh's `file` (relative to the scene file's folder), `scale` and
+// `translate`: read, checked closed, transformed.
+struct MeshKeys {
+  std::string file, file_path;
+  double scale = 1.0;
+  Vec3d translate{0, 0, 0};
+  std::shared_ptr<const SolidMesh> mesh;
+};
+MeshKeys read_mesh_keys(TableReader& t, const SceneConfig& s);
 
 // The [[spout]] blocks (none if absent).
 void read_all_spouts(TableReader& root, SceneConfig& s);

@@ -116,6 +116,16 @@ std::string obstacle_lines(const ObstacleConfig& o, int d) {
       out += fmt::format("center = {}\nradius = {}\n", vecf(o.center, d), num(o.radius));
       if (o.shape == ObstacleShape::Cylinder) out += fmt::format("height = {}\n", num(o.height));
       break;
+    case ObstacleShape::Polygon: {
+      std::string v;
+      for (const Vec3d& p : o.vertices) v += (v.empty() ? "" : ", ") + vecf(p, 2);
+      out += fmt::format("vertices = [{}]\n", v);
+      break;
+    }
+    case ObstacleShape::Mesh:
+      out += fmt::format("file = {}\nscale = {}\ntranslate = {}\n", quoted(o.file_path),
+                         num(o.scale), vecf(o.translate, 3));
+      break;
   }
   out += fmt::format("mu = {}\nvelocity = {}\n", num(o.mu), vecf(o.velocity, d));
   if (o.dynamic()) out += fmt::format("density = {}\n", num(o.density));

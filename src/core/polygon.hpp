@@ -1,0 +1,93 @@
+// A closed polygon as a 2D solid: its exact signed distance and outward
+// normal, for polygonal obstacles (physics/obstacle.hpp). Inside by the
+// nonzero winding rule, so either orientation fills the same.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace sablier {
+
+class SolidPolygon {
+ public:
+  using Point2 = std::array<double, 2>;
+
+  explicit SolidPolygon(std::vector<Point2> corners) : v_(std::move(corners)) {
+    lo_ = hi_ = v_.front();
+    for (const Point2& p : v_)
+      for (int a = 0; a < 2; ++a) lo_[a] = std::min(lo_[a], p[a]), hi_[a] = std::max(hi_[a], p[a]);
+  }
+
+  // Winding number around (x, y): nonzero inside (Sunday's crossing rule).
+  int winding(double x, double y) const {
+    int w = 0;
+    for (std::size_t i = 0, n = v_.size(); i < n; ++i) {
+      const Point2& a = v_[i];
+      const Point2& b = v_[(i + 1) % n];
+      const double side = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
+      if (a[1] <= y) {
+        if (b[1] > y && side > 0.0) ++w;
+      } else if (b[1] <= y && side < 0.0) {
+        --w;
+      }
+    }
+    return w;
+  }
+
+  // Signed distance of (x, y) to the boundary (m; negative inside) and the
+  // outward unit normal there: from the nearest boundary point towards
+  // (x, y) outside, away from (x, y) inside. On the boundary itself, the
+  // nearest edge's outward normal. O(corners); allocates nothing.
+  double signed_distance(double x, double y, double* nx, double* ny) const {
+    double best = 1e300, qx = x, qy = y;
+    std::size_t edge = 0;
+    for (std::size_t i = 0, n = v_.size(); i < n; ++i) {
+      const Point2& a = v_[i];
+      const Point2& b = v_[(i + 1) % n];
+      const double ex = b[0] - a[0], ey = b[1] - a[1];
+      const double len2 = ex * ex + ey * ey;
+      double t = len2 > 0.0 ? ((x - a[0]) * ex + (y - a[1]) * ey) / len2 : 0.0;
+      t = std::clamp(t, 0.0, 1.0);
+      const double px = a[0] + t * ex, py = a[1] + t * ey;
+      const double d2 = (x - px) * (x - px) + (y - py) * (y - py);
+      if (d2 < best) best = d2, qx = px, qy = py, edge = i;
+    }
+    const bool in = winding(x, y) != 0;
+    const double dist = std::sqrt(best);
+    if (dist > 0.0) {
+      const double s = in ? -1.0 : 1.0;
+      *nx = s * (x - qx) / dist;
+      *ny = s * (y - qy) / dist;
+    } else {
+      const Point2& a = v_[edge];
+      const Point2& b = v_[(edge + 1) % v_.size()];
+      const double ex = b[0] - a[0], ey = b[1] - a[1], len = std::hypot(ex, ey);
+      // The edge's right-hand normal points out of a counter-clockwise polygon.
+      const double o = orientation() > 0.0 ? 1.0 : -1.0;
+      *nx = o * ey / len;
+      *ny = -o * ex / len;
+    }
+    return in ? -dist : dist;
+  }
+
+  // Twice the signed area: positive for counter-clockwise corners.
+  double orientation() const {
+    double a = 0.0;
+    for (std::size_t i = 0, n = v_.size(); i < n; ++i)
+      a += v_[i][0] * v_[(i + 1) % n][1] - v_[(i + 1) % n][0] * v_[i][1];
+    return a;
+  }
+
+  const std::vector<Point2>& corners() const { return v_; }
+  const Point2& lower() const { return lo_; }
+  const Point2& upper() const { return hi_; }
+
+ private:
+  std::vector<Point2> v_;
+  Point2 lo_{}, hi_{};
+};
+
+}  // namespace sablier
