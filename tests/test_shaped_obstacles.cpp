@@ -263,5 +263,40 @@ TEST(ShapedObstacles, HourglassDrainsThroughItsNeck) {
   EXPECT_NEAR(late / early, 1.0, 0.15);
 }
 
+// A rigid disk (2 t/m^3, r = 4 cm) released on a rough polygon ramp at
+// theta = 20 degrees, away from the sand: its contact with the polygon is
+// a ball's contact with any solid (docs/method.md, "Frictional
+// obstacles"), so it rolls without slipping and accelerates at
+// 2/3 g sin(theta), the rigid-body value 1 / (1 + J / (m r^2)) for a disk,
+// with omega r = v.
+TEST(ShapedObstacles, DiskRollsDownAPolygonRamp) {
+  const double theta = 20.0 * test::kPi / 180.0, tn = std::tan(theta);
+  const double r = 0.04, x0 = 0.1;
+  // The ramp's surface: through (0, 0.4), down to the right at theta.
+  const auto y = [&](double x) { return 0.4 - x * tn; };
+  const std::string text =
+      "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [1.0, 0.5]\n"
+      "resolution = [50, 25]\n[[obstacle]]\nshape = \"polygon\"\nvertices = [[-0.1, " +
+      std::to_string(y(-0.1)) + "], [1.1, " + std::to_string(y(1.1)) +
+      "], [1.1, -0.5], [-0.1, -0.5]]\n[[obstacle]]\nshape = \"disk\"\ncenter = [" +
+      std::to_string(x0 + r * std::sin(theta)) + ", " +
+      std::to_string(y(x0) + r * std::cos(theta) + 1e-4) +
+      "]\nradius = 0.04\ndensity = 2000\n[[sand]]\nshape = \"box\"\nmin = [0.9, 0.4]\n"
+      "max = [0.95, 0.45]\n";
+  Simulation<2> sim(parse_scene(text, "roll.toml"));
+  const auto speed = [&] {
+    const Obstacle<2>& disk = sim.obstacles().at(1);
+    EXPECT_NEAR(-disk.spin[0] * r, disk.velocity.norm(), 1e-6 * disk.velocity.norm());
+    return disk.velocity.norm();
+  };
+  run_until(sim, 0.1);
+  const double v1 = speed(), t1 = sim.time();
+  run_until(sim, 0.25);
+  const double v2 = speed(), t2 = sim.time();
+  const double a = (v2 - v1) / (t2 - t1), expected = 2.0 / 3.0 * 9.81 * std::sin(theta);
+  std::cout << "disk on a polygon ramp: " << a << " m/s^2, rolling " << expected << "\n";
+  EXPECT_NEAR(a / expected, 1.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace sablier
