@@ -352,8 +352,8 @@ TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
                              "mu_i = { delta_mu = 0.26, I0 = 0.279, grain_diameter = 1e-3 }\n"
                              "[[obstacle]]\nshape = \"cylinder\"\ncenter = [0.45, 0.2, 0.0]\n"
                              "radius = 0.02\nheight = 0.1\n"
-                             "[[obstacle]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
-                             "\"\nscale = 0.05\ntranslate = [0.3, 0.02, 0.0]\n";
+                             "[[obstacle]]\nshape = \"mesh\"\nfile = \"" +
+                             obj.string() + "\"\nscale = 0.05\ntranslate = [0.3, 0.02, 0.0]\n";
   std::set<std::string> written{"boundary.default"};
   for (const std::string& text : {kFull2D, full3d}) {
     const std::string resolved = scene_to_toml(parse_scene(text, "full.toml"));

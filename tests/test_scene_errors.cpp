@@ -335,8 +335,7 @@ std::vector<BadScene> obstacle_errors() {
        with(block + "\"polygon\"\nvertices = [[0.5, 0.1], [0.6, 0.1], [0.6, 0.2]]\n"
                     "density = 2500\n"),
        "bad.toml:12: obstacle[0].density: a polygon cannot be a rigid body yet", "disk only"},
-      {"obstacle mesh file missing",
-       kBase3D + block + "\"mesh\"\nfile = \"no_such_mesh.obj\"\n",
+      {"obstacle mesh file missing", kBase3D + block + "\"mesh\"\nfile = \"no_such_mesh.obj\"\n",
        "bad.toml:12: obstacle[0].file: cannot use the mesh file", "closed triangle mesh"},
       {"obstacle vertices in a disk", with(disk + "radius = 0.1\nvertices = [[0, 0]]\n"),
        "bad.toml:13: obstacle[0].vertices: not used by shape \"disk\"", "center, radius"},

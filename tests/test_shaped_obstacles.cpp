@@ -151,13 +151,14 @@ default = "free"
 [[sand]]
 shape = "polygon"
 particles_per_cell = 2
-vertices = [)" + on(0.05, 0.0) + ", " + on(0.35, 0.0) + ", " + on(0.35, 0.04) + ", " +
-                           on(0.05, 0.04) + "]\n";
+vertices = [)" + on(0.05, 0.0) +
+                           ", " + on(0.35, 0.0) + ", " + on(0.35, 0.04) + ", " + on(0.05, 0.04) +
+                           "]\n";
   SceneConfig sc = parse_scene(text, "ramp.toml");
   ObstacleConfig ramp;
   ramp.shape = ObstacleShape::Polygon;
-  ramp.vertices = {{-0.1, 0.2 + 0.1 * s / c, 0}, {0.6, 0.2 - 0.6 * s / c, 0}, {0.6, -0.5, 0},
-                   {-0.1, -0.5, 0}};
+  ramp.vertices = {
+      {-0.1, 0.2 + 0.1 * s / c, 0}, {0.6, 0.2 - 0.6 * s / c, 0}, {0.6, -0.5, 0}, {-0.1, -0.5, 0}};
   std::vector<SolidPolygon::Point2> corners;
   for (const Vec3d& v : ramp.vertices) corners.push_back({v[0], v[1]});
   ramp.polygon = std::make_shared<const SolidPolygon>(corners);
@@ -204,10 +205,10 @@ TEST(ShapedObstacles, BedRestsOnAMeshSlab) {
     for (const auto& t : m.triangles)
       out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
   }
-  SceneConfig s = load_scene(test::scene_file("bed3d.toml"),
-                             {"grid.size=[0.2,0.1,0.2]", "grid.resolution=[20,10,20]",
-                              "sand.0.min=[0.0,0.0,0.045]", "sand.0.max=[0.2,0.1,0.145]",
-                              "obstacle=[{shape=\"mesh\",file=\"" + obj.string() + "\"}]"});
+  SceneConfig s = load_scene(
+      test::scene_file("bed3d.toml"),
+      {"grid.size=[0.2,0.1,0.2]", "grid.resolution=[20,10,20]", "sand.0.min=[0.0,0.0,0.045]",
+       "sand.0.max=[0.2,0.1,0.145]", "obstacle=[{shape=\"mesh\",file=\"" + obj.string() + "\"}]"});
   fs::remove_all(obj.parent_path());
   ASSERT_EQ(s.obstacles.size(), 1u);
   Simulation<3> sim(s);

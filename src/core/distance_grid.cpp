@@ -15,7 +15,8 @@ DistanceGrid::DistanceGrid(const SolidMesh& mesh, const Point3& lo, const Point3
   values_.assign(static_cast<std::size_t>(total), 0.0);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t k = 0; k < total; ++k) {
-    const std::int64_t i = k % n_[0], j = (k / n_[0]) % n_[1], l = k / (std::int64_t(n_[0]) * n_[1]);
+    const std::int64_t i = k % n_[0], j = (k / n_[0]) % n_[1],
+                       l = k / (std::int64_t(n_[0]) * n_[1]);
     const Point3 p{lo[0] + i * spacing, lo[1] + j * spacing, lo[2] + l * spacing};
     const double d = mesh.distance(p);
     values_[static_cast<std::size_t>(k)] = mesh.contains(p) ? -d : d;

@@ -32,7 +32,7 @@ class DistanceGrid {
  private:
   Point3 lo_{};
   double h_ = 0.0;
-  std::array<int, 3> n_{};  // samples per axis
+  std::array<int, 3> n_{};      // samples per axis
   std::vector<double> values_;  // x fastest
 };
 

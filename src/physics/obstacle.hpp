@@ -25,7 +25,7 @@ struct Obstacle {
   Vec<D> b = Vec<D>::Zero();  // plane: unit normal; box: max
   double radius = 0.0;
   double height = 0.0;
-  std::shared_ptr<const SolidPolygon> polygon;  // 2D polygons
+  std::shared_ptr<const SolidPolygon> polygon;   // 2D polygons
   std::shared_ptr<const DistanceGrid> distance;  // 3D meshes
   double mu = 0.5;  // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
@@ -150,7 +150,8 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
     case ObstacleShape::Mesh: {
       if constexpr (D == 3) {
         Point3 n{};
-        const double s = o.distance->signed_distance({x[0] - o.a[0], x[1] - o.a[1], x[2] - o.a[2]}, &n);
+        const double s =
+            o.distance->signed_distance({x[0] - o.a[0], x[1] - o.a[1], x[2] - o.a[2]}, &n);
         *normal = Vec<D>(n[0], n[1], n[2]);
         return s;
       }

@@ -27,7 +27,7 @@ const Range kDensityRange{0.0, 1e5, true, false};  // kg/m^3: above 0, up to 100
 
 const Names kShapes2D{"plane", "box", "disk", "polygon"};
 const Names kShapes3D{"plane", "box", "sphere", "cylinder", "mesh"};
-const Names kGeometryKeys{"point", "normal", "min",  "max",  "center",   "radius",
+const Names kGeometryKeys{"point",  "normal",   "min",  "max",   "center",   "radius",
                           "height", "vertices", "file", "scale", "translate"};
 
 char axis_name(int a) { return "xyz"[a]; }
@@ -116,10 +116,11 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
     const double eps = 1e-12 * s.size[a];
     if (hi >= -eps && lo <= s.size[a] + eps) continue;
     const std::string key = o.shape == ObstacleShape::Polygon ? "vertices"
-                            : o.shape == ObstacleShape::Mesh  ? (t.has("translate") ? "translate" : "file")
-                            : o.shape != ObstacleShape::Box   ? "center"
-                            : hi < 0.0                        ? "max"
-                                                              : "min";
+                            : o.shape == ObstacleShape::Mesh
+                                ? (t.has("translate") ? "translate" : "file")
+                            : o.shape != ObstacleShape::Box ? "center"
+                            : hi < 0.0                      ? "max"
+                                                            : "min";
     t.fail_at(t.node(key), key,
               fmt::format("the obstacle spans [{}, {}] on {}, outside the box [0, {}] "
                           "(grid.size); allowed: an obstacle that reaches into or touches the "
@@ -202,8 +203,7 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
 // contact rows look one cell out from the box's nodes, the grains and the
 // moves no further than the box.
 std::shared_ptr<const DistanceGrid> sample_distance(TableReader& t, const SolidMesh& mesh,
-                                                    const ObstacleConfig& o,
-                                                    const SceneConfig& s) {
+                                                    const ObstacleConfig& o, const SceneConfig& s) {
   const double h = s.cell_size(), margin = 3.0 * h;
   Point3 lo{}, hi{};
   double samples = 1.0;
