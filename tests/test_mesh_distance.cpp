@@ -17,11 +17,15 @@
 #include <vector>
 
 #include "core/mesh.hpp"
+#include "mesh_fixtures.hpp"
 
 namespace sablier {
 namespace {
 
-using Tri = std::array<Point3, 3>;
+using test::icosphere;
+using test::Tri;
+
+TriangleMesh unit_cube() { return test::box_mesh({0, 0, 0}, {1, 1, 1}); }
 
 Point3 minus(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot3(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -61,47 +65,7 @@ double brute_distance(const std::vector<Tri>& tris, const Point3& p) {
   return d;
 }
 
-// The unit cube [0, 1]^3, two outward triangles per face (corner index
-// bits: x = 1, y = 2, z = 4).
-TriangleMesh unit_cube() {
-  TriangleMesh m;
-  for (int k = 0; k < 8; ++k)
-    m.vertices.push_back({k & 1 ? 1.0 : 0.0, k & 2 ? 1.0 : 0.0, k & 4 ? 1.0 : 0.0});
-  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return m;
-}
 
-// A unit icosahedron whose faces are split in four `levels` times, the new
-// vertices pushed out onto the unit sphere: 20 * 4^levels triangles.
-std::vector<Tri> icosphere(int levels) {
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  const std::vector<Point3> v{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
-                              {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
-                              {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                        {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  const auto unit = [](const Point3& p) {
-    const double n = length(p);
-    return Point3{p[0] / n, p[1] / n, p[2] / n};
-  };
-  std::vector<Tri> tris;
-  for (const auto& k : f) tris.push_back({unit(v[k[0]]), unit(v[k[1]]), unit(v[k[2]])});
-  for (int l = 0; l < levels; ++l) {
-    std::vector<Tri> finer;
-    for (const Tri& x : tris) {
-      const auto mid = [&](int i, int j) {
-        return unit({(x[i][0] + x[j][0]) / 2, (x[i][1] + x[j][1]) / 2, (x[i][2] + x[j][2]) / 2});
-      };
-      const Point3 ab = mid(0, 1), bc = mid(1, 2), ca = mid(2, 0);
-      finer.insert(finer.end(), {{x[0], ab, ca}, {ab, x[1], bc}, {ca, bc, x[2]}, {ab, bc, ca}});
-    }
-    tris = finer;
-  }
-  return tris;
-}
 
 // A triangle soup as a mesh (shared vertices repeated: the distance does
 // not need them merged).

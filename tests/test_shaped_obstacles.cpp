@@ -20,6 +20,7 @@
 #include "physics/obstacle.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace sablier {
@@ -66,23 +67,13 @@ TEST(ShapedObstacles, PolygonDistanceIsExact) {
   EXPECT_NEAR(ny, 0.1 / d, 1e-14);
 }
 
-// A unit cube as a closed mesh.
-TriangleMesh cube_mesh(const Point3& lo, const Point3& hi) {
-  TriangleMesh m;
-  for (int k = 0; k < 8; ++k)
-    m.vertices.push_back({k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]});
-  // Two triangles per face, outward (corner index bits: x = 1, y = 2, z = 4).
-  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return m;
-}
 
 // The sampled distance of a box is exact wherever the nearest sample cell
 // sees one face only (a linear function, which trilinear interpolation
 // reproduces), and its error near edges and corners is below the spacing.
 TEST(ShapedObstacles, SampledMeshDistanceMatchesTheBox) {
   const Point3 lo{0.2, 0.3, 0.1}, hi{0.6, 0.5, 0.4};
-  const SolidMesh mesh(cube_mesh(lo, hi));
+  const SolidMesh mesh(test::box_mesh(lo, hi));
   const double h = 0.01;
   const DistanceGrid grid(mesh, {0, 0, 0}, {1, 1, 1}, h);
   ObstacleConfig c;
@@ -199,7 +190,7 @@ TEST(ShapedObstacles, BlockSlidesDownAPolygonRampWithCoulombFriction) {
 TEST(ShapedObstacles, BedRestsOnAMeshSlab) {
   const fs::path obj = test::temp_dir("slab") / "slab.obj";
   {
-    const TriangleMesh m = cube_mesh({-0.1, -0.1, -0.1}, {0.3, 0.2, 0.045});
+    const TriangleMesh m = test::box_mesh({-0.1, -0.1, -0.1}, {0.3, 0.2, 0.045});
     std::ofstream out(obj);
     for (const Point3& v : m.vertices) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
     for (const auto& t : m.triangles)

@@ -22,13 +22,15 @@
 #include "physics/emission.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
+#include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace sablier {
 namespace {
 
 namespace fs = std::filesystem;
-using Tri = std::array<Point3, 3>;
+using test::icosphere;
+using test::Tri;
 
 using test::kPi;
 
@@ -175,33 +177,6 @@ TEST(Sources, MeshesFillTheirVolumeInEveryFormat) {
 
 // The tree's far-field sums against the exact sum over every triangle, on a
 // subdivided icosahedron (1280 triangles) and points around it.
-std::vector<Tri> icosphere(int levels) {
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Point3> v{{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                        {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-  const int f[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                        {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  const auto unit = [](Point3 p) {
-    const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    return Point3{p[0] / n, p[1] / n, p[2] / n};
-  };
-  std::vector<Tri> tris;
-  for (const auto& k : f) tris.push_back({unit(v[k[0]]), unit(v[k[1]]), unit(v[k[2]])});
-  for (int l = 0; l < levels; ++l) {
-    std::vector<Tri> finer;
-    for (const Tri& x : tris) {
-      const auto mid = [&](int i, int j) {
-        return unit({(x[i][0] + x[j][0]) / 2, (x[i][1] + x[j][1]) / 2, (x[i][2] + x[j][2]) / 2});
-      };
-      const Point3 ab = mid(0, 1), bc = mid(1, 2), ca = mid(2, 0);
-      finer.insert(finer.end(), {{x[0], ab, ca}, {ab, x[1], bc}, {ca, bc, x[2]}, {ab, bc, ca}});
-    }
-    tris = finer;
-  }
-  return tris;
-}
 
 double exact_winding(const std::vector<Tri>& tris, const Point3& p) {
   double w = 0.0;

@@ -11,6 +11,25 @@
 
 namespace sablier {
 
+// Winding number of the closed polygon with corners `v` (any points p with
+// p[0], p[1]) around (x, y): nonzero inside, for either orientation
+// (Sunday's crossing rule; no trigonometry).
+template <class Points>
+int winding_number(const Points& v, double x, double y) {
+  int w = 0;
+  for (std::size_t i = 0, n = v.size(); i < n; ++i) {
+    const auto& a = v[i];
+    const auto& b = v[(i + 1) % n];
+    const double side = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
+    if (a[1] <= y) {
+      if (b[1] > y && side > 0.0) ++w;  // upward crossing, (x, y) left of the edge
+    } else if (b[1] <= y && side < 0.0) {
+      --w;  // downward crossing, (x, y) right of the edge
+    }
+  }
+  return w;
+}
+
 class SolidPolygon {
  public:
   using Point2 = std::array<double, 2>;
@@ -21,21 +40,8 @@ class SolidPolygon {
       for (int a = 0; a < 2; ++a) lo_[a] = std::min(lo_[a], p[a]), hi_[a] = std::max(hi_[a], p[a]);
   }
 
-  // Winding number around (x, y): nonzero inside (Sunday's crossing rule).
-  int winding(double x, double y) const {
-    int w = 0;
-    for (std::size_t i = 0, n = v_.size(); i < n; ++i) {
-      const Point2& a = v_[i];
-      const Point2& b = v_[(i + 1) % n];
-      const double side = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
-      if (a[1] <= y) {
-        if (b[1] > y && side > 0.0) ++w;
-      } else if (b[1] <= y && side < 0.0) {
-        --w;
-      }
-    }
-    return w;
-  }
+  // Winding number around (x, y): nonzero inside.
+  int winding(double x, double y) const { return winding_number(v_, x, y); }
 
   // Signed distance of (x, y) to the boundary (m; negative inside) and the
   // outward unit normal there: from the nearest boundary point towards

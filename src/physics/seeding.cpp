@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/mesh.hpp"
+#include "core/polygon.hpp"
 #include "physics/obstacle.hpp"
 #include "physics/seeding.hpp"
 #include "physics/simulation.hpp"
@@ -15,23 +16,6 @@ namespace {
 // Uniform double in [0, 1) from 53 random bits: portable across standard
 // libraries (std::uniform_real_distribution is not), so seeds reproduce.
 inline double unit_random(std::mt19937_64& rng) { return (rng() >> 11) * 0x1.0p-53; }
-
-// Winding number of a closed polygon around x (2D): nonzero inside, for
-// either orientation (Sunday's crossing rule; no trigonometry).
-int polygon_winding(const std::vector<Vec3d>& v, double x, double y) {
-  int w = 0;
-  for (std::size_t i = 0, n = v.size(); i < n; ++i) {
-    const Vec3d& a = v[i];
-    const Vec3d& b = v[(i + 1) % n];
-    const double side = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
-    if (a[1] <= y) {
-      if (b[1] > y && side > 0.0) ++w;  // upward crossing, x left of the edge
-    } else if (b[1] <= y && side < 0.0) {
-      --w;  // downward crossing, x right of the edge
-    }
-  }
-  return w;
-}
 
 template <int D>
 bool inside(const SandConfig& s, const Vec<D>& x) {
@@ -45,7 +29,7 @@ bool inside(const SandConfig& s, const Vec<D>& x) {
       for (int a = 0; a < D; ++a) r2 += (x[a] - s.center[a]) * (x[a] - s.center[a]);
       return r2 < s.radius * s.radius;
     case SandShape::Polygon:
-      return polygon_winding(s.vertices, x[0], x[1]) != 0;
+      return winding_number(s.vertices, x[0], x[1]) != 0;
     case SandShape::Mesh:
       if constexpr (D == 3) return s.mesh->contains({x[0], x[1], x[2]});
       return false;
