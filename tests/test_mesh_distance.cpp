@@ -65,8 +65,6 @@ double brute_distance(const std::vector<Tri>& tris, const Point3& p) {
   return d;
 }
 
-
-
 // A triangle soup as a mesh (shared vertices repeated: the distance does
 // not need them merged).
 TriangleMesh soup(const std::vector<Tri>& tris) {

@@ -17,10 +17,10 @@
 #include "core/distance_grid.hpp"
 #include "core/mesh.hpp"
 #include "core/polygon.hpp"
+#include "mesh_fixtures.hpp"
 #include "physics/obstacle.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
-#include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace sablier {
@@ -66,7 +66,6 @@ TEST(ShapedObstacles, PolygonDistanceIsExact) {
   EXPECT_NEAR(nx, 0.05 / d, 1e-14);
   EXPECT_NEAR(ny, 0.1 / d, 1e-14);
 }
-
 
 // The sampled distance of a box is exact wherever the nearest sample cell
 // sees one face only (a linear function, which trilinear interpolation

@@ -19,10 +19,10 @@
 
 #include "core/mesh.hpp"
 #include "io/writers.hpp"
+#include "mesh_fixtures.hpp"
 #include "physics/emission.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
-#include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace sablier {

@@ -1,5 +1,7 @@
 // Filling [[sand]] regions with particles (METHOD.md section 2, step 1),
 // except inside [[obstacle]] blocks.
+#include "physics/seeding.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -7,7 +9,6 @@
 #include "core/mesh.hpp"
 #include "core/polygon.hpp"
 #include "physics/obstacle.hpp"
-#include "physics/seeding.hpp"
 #include "physics/simulation.hpp"
 
 namespace sablier {
