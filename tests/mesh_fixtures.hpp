@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "core/mesh.hpp"
@@ -42,6 +43,21 @@ inline std::vector<Tri> icosphere(int levels) {
     tris = finer;
   }
   return tris;
+}
+
+// A triangle soup as a mesh (shared corners repeated, not merged: the
+// winding number and the distance do not need them merged).
+inline TriangleMesh soup(const std::vector<Tri>& tris) {
+  TriangleMesh mesh;
+  for (const Tri& t : tris) {
+    std::array<std::int32_t, 3> idx;
+    for (int k = 0; k < 3; ++k) {
+      idx[k] = static_cast<std::int32_t>(mesh.vertices.size());
+      mesh.vertices.push_back(t[k]);
+    }
+    mesh.triangles.push_back(idx);
+  }
+  return mesh;
 }
 
 // The box [lo, hi] as a closed mesh, two outward triangles per face (corner

@@ -23,6 +23,7 @@ namespace sablier {
 namespace {
 
 using test::icosphere;
+using test::soup;
 using test::Tri;
 
 TriangleMesh unit_cube() { return test::box_mesh({0, 0, 0}, {1, 1, 1}); }
@@ -65,20 +66,6 @@ double brute_distance(const std::vector<Tri>& tris, const Point3& p) {
   return d;
 }
 
-// A triangle soup as a mesh (shared vertices repeated: the distance does
-// not need them merged).
-TriangleMesh soup(const std::vector<Tri>& tris) {
-  TriangleMesh mesh;
-  for (const Tri& t : tris) {
-    std::array<std::int32_t, 3> idx;
-    for (int k = 0; k < 3; ++k) {
-      idx[k] = static_cast<std::int32_t>(mesh.vertices.size());
-      mesh.vertices.push_back(t[k]);
-    }
-    mesh.triangles.push_back(idx);
-  }
-  return mesh;
-}
 
 void expect_point_near(const Point3& a, const Point3& b, double tol) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], tol) << "component " << i;

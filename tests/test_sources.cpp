@@ -197,15 +197,7 @@ double exact_winding(const std::vector<Tri>& tris, const Point3& p) {
 
 TEST(Sources, FastWindingNumberMatchesTheExactSum) {
   const std::vector<Tri> tris = icosphere(3);
-  TriangleMesh mesh;
-  for (const Tri& t : tris) {
-    std::array<std::int32_t, 3> idx;
-    for (int k = 0; k < 3; ++k) {
-      idx[k] = static_cast<std::int32_t>(mesh.vertices.size());
-      mesh.vertices.push_back(t[k]);
-    }
-    mesh.triangles.push_back(idx);
-  }
+  const TriangleMesh mesh = test::soup(tris);
   const SolidMesh solid(mesh);
   EXPECT_EQ(solid.triangle_count(), 1280u);
   double worst = 0.0;
