@@ -66,7 +66,6 @@ double brute_distance(const std::vector<Tri>& tris, const Point3& p) {
   return d;
 }
 
-
 void expect_point_near(const Point3& a, const Point3& b, double tol) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], tol) << "component " << i;
 }
