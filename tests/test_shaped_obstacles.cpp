@@ -289,5 +289,47 @@ TEST(ShapedObstacles, DiskRollsDownAPolygonRamp) {
   EXPECT_NEAR(a / expected, 1.0, 1e-6);
 }
 
+// The 3D counterpart on a mesh: a rigid sphere (r = 4 cm) on a ramp made
+// of a closed mesh (a prism whose top face is inclined at 20 degrees,
+// falling along +x) rolls without slipping at 5/7 g sin(theta). Its top
+// face is flat, so the sampled distance is exact there (a linear function)
+// and so is its normal.
+TEST(ShapedObstacles, SphereRollsDownAMeshRamp) {
+  const double theta = 20.0 * test::kPi / 180.0, tn = std::tan(theta);
+  const double r = 0.04, x0 = 0.1;
+  const auto z = [&](double x) { return 0.25 - x * tn; };
+  const fs::path dir = test::temp_dir("ramp"), obj = dir / "ramp.obj";
+  {
+    // The cross-section in (x, z), extruded along y over [-0.1, 0.3].
+    const double xz[4][2] = {{-0.1, z(-0.1)}, {0.7, z(0.7)}, {0.7, -0.3}, {-0.1, -0.3}};
+    std::ofstream out(obj);
+    for (double y : {-0.1, 0.3})
+      for (const auto& p : xz) out << "v " << p[0] << " " << y << " " << p[1] << "\n";
+    out << "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n";
+  }
+  const std::string text =
+      "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[grid]\nsize = [0.6, 0.2, 0.3]\n"
+      "resolution = [30, 10, 15]\n[[obstacle]]\nshape = \"mesh\"\nfile = \"" +
+      obj.string() + "\"\n[[obstacle]]\nshape = \"sphere\"\ncenter = [" +
+      std::to_string(x0 + r * std::sin(theta)) + ", 0.1, " +
+      std::to_string(z(x0) + r * std::cos(theta) + 1e-4) +
+      "]\nradius = 0.04\ndensity = 2000\n[[sand]]\nshape = \"box\"\n"
+      "min = [0.5, 0.0, 0.25]\nmax = [0.55, 0.05, 0.3]\n";
+  Simulation<3> sim(parse_scene(text, "ramp.toml"));
+  fs::remove_all(dir);
+  const auto speed = [&] {
+    const Obstacle<3>& ball = sim.obstacles().at(1);
+    EXPECT_NEAR(ball.spin[1] * r, ball.velocity.norm(), 1e-6 * ball.velocity.norm());
+    return ball.velocity.norm();
+  };
+  run_until(sim, 0.1);
+  const double v1 = speed(), t1 = sim.time();
+  run_until(sim, 0.25);
+  const double v2 = speed(), t2 = sim.time();
+  const double a = (v2 - v1) / (t2 - t1), expected = 5.0 / 7.0 * 9.81 * std::sin(theta);
+  std::cout << "sphere on a mesh ramp: " << a << " m/s^2, rolling " << expected << "\n";
+  EXPECT_NEAR(a / expected, 1.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace sablier
