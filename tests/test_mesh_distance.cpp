@@ -127,6 +127,9 @@ TEST(MeshDistance, SphereMatchesBruteForce) {
     ASSERT_NEAR(d, exact, 1e-12 * std::max(1.0, exact)) << p[0] << " " << p[1] << " " << p[2];
     worst = std::max(worst, std::abs(d - exact));
     ASSERT_LE(std::abs(d - std::abs(length(p) - 1.0)), chord + 1e-12);
+    // With a limit: the same below it, the limit itself beyond.
+    const double limit = 0.3;
+    ASSERT_EQ(sphere.distance(p, nullptr, limit), d < limit ? d : limit);
   }
   std::cout << "largest |tree - brute force| distance: " << worst << ", chord error " << chord
             << "\n";

@@ -74,7 +74,7 @@ TEST(ShapedObstacles, SampledMeshDistanceMatchesTheBox) {
   const Point3 lo{0.2, 0.3, 0.1}, hi{0.6, 0.5, 0.4};
   const SolidMesh mesh(test::box_mesh(lo, hi));
   const double h = 0.01;
-  const DistanceGrid grid(mesh, {0, 0, 0}, {1, 1, 1}, h);
+  const DistanceGrid grid(mesh, {0, 0, 0}, {1, 1, 1}, h, 1.0);
   ObstacleConfig c;
   c.shape = ObstacleShape::Box;
   c.min = lo;
@@ -102,6 +102,21 @@ TEST(ShapedObstacles, SampledMeshDistanceMatchesTheBox) {
       }
   std::cout << "sampled cube distance: largest error " << worst << " m (spacing " << h
             << "), away from edges " << worst_face << " m\n";
+  // Cut to a band of 5 cm: the same values within 4 cm of the surface (band
+  // less a spacing), beyond that at least 4 cm in magnitude, of the same
+  // sign.
+  const DistanceGrid banded(mesh, {0, 0, 0}, {1, 1, 1}, h, 0.05);
+  for (int i = 0; i <= 50; ++i) {
+    const Point3 p{0.01 + 0.98 * i / 50.0, 0.41, 0.23};
+    Point3 n{};
+    const double full = grid.signed_distance(p, &n), cut = banded.signed_distance(p, &n);
+    if (std::abs(full) <= 0.04) {
+      EXPECT_EQ(cut, full) << p[0];
+    } else {
+      EXPECT_GE(std::abs(cut), 0.04) << p[0];
+      EXPECT_EQ(cut > 0, full > 0) << p[0];
+    }
+  }
   EXPECT_LT(worst_face, 1e-12);
   EXPECT_LT(worst, h);
 }

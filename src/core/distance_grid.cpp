@@ -7,7 +7,7 @@
 namespace sablier {
 
 DistanceGrid::DistanceGrid(const SolidMesh& mesh, const Point3& lo, const Point3& hi,
-                           double spacing)
+                           double spacing, double band)
     : lo_(lo), h_(spacing) {
   for (int a = 0; a < 3; ++a)
     n_[a] = std::max(2, static_cast<int>(std::ceil((hi[a] - lo[a]) / spacing)) + 1);
@@ -18,7 +18,7 @@ DistanceGrid::DistanceGrid(const SolidMesh& mesh, const Point3& lo, const Point3
     const std::int64_t i = k % n_[0], j = (k / n_[0]) % n_[1],
                        l = k / (std::int64_t(n_[0]) * n_[1]);
     const Point3 p{lo[0] + i * spacing, lo[1] + j * spacing, lo[2] + l * spacing};
-    const double d = mesh.distance(p);
+    const double d = mesh.distance(p, nullptr, band);
     values_[static_cast<std::size_t>(k)] = mesh.contains(p) ? -d : d;
   }
 }

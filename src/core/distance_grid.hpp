@@ -19,12 +19,17 @@ class DistanceGrid {
  public:
   // Samples the signed distance to `mesh` (negative inside, by its winding
   // number) at the corners of a grid of spacing `spacing` covering [lo, hi]
-  // (OpenMP over the samples; the values do not depend on the threads).
-  DistanceGrid(const SolidMesh& mesh, const Point3& lo, const Point3& hi, double spacing);
+  // (OpenMP over the samples; the values do not depend on the threads),
+  // each cut to [-band, band]: the simulation looks a cell or two from the
+  // surface, and the cut spares the distance queries of far samples.
+  DistanceGrid(const SolidMesh& mesh, const Point3& lo, const Point3& hi, double spacing,
+               double band);
 
   // The interpolated signed distance at p (m) and its unit gradient, the
-  // outward normal. Beyond the sampled box: the value at the nearest point
-  // of the box plus the distance to it. Allocates nothing.
+  // outward normal: exactly interpolated within band - spacing of the
+  // surface, beyond that a value of at least about band - spacing in
+  // magnitude, of the right sign. Beyond the sampled box: the value at the
+  // nearest point of the box plus the distance to it. Allocates nothing.
   double signed_distance(const Point3& p, Point3* normal) const;
 
   std::size_t sample_count() const { return values_.size(); }

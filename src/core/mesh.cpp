@@ -236,8 +236,8 @@ bool SolidMesh::contains(const Point3& p) const {
 // child goes on top of the stack, so that a good best is found early and
 // most of the tree is cut; each entry keeps its bound, checked again when
 // popped since the best may have shrunk meanwhile.
-double SolidMesh::distance(const Point3& p, Point3* closest) const {
-  if (nodes_.empty()) return HUGE_VAL;
+double SolidMesh::distance(const Point3& p, Point3* closest, double limit) const {
+  if (nodes_.empty()) return limit;
   const auto bound = [&](const Node& n) {
     return std::max(0.0, norm(sub(p, n.centre)) - n.radius);
   };
@@ -250,8 +250,9 @@ double SolidMesh::distance(const Point3& p, Point3* closest) const {
   std::size_t top = 0;
   stack[top] = 0;
   lower[top++] = bound(nodes_[0]);
-  double best = HUGE_VAL, best2 = HUGE_VAL;  // distance and its square
-  Point3 nearest = tri_[0].a;
+  double best = limit, best2 = limit * limit;  // distance and its square
+  bool found = false;
+  Point3 nearest{};
   while (top > 0) {
     --top;
     if (lower[top] >= best) continue;
@@ -260,7 +261,7 @@ double SolidMesh::distance(const Point3& p, Point3* closest) const {
       for (std::int32_t k = n.first; k < n.first + n.count; ++k) {
         const Point3 q = closest_on_triangle(p, tri_[k].a, tri_[k].b, tri_[k].c);
         const double d2 = distance2(p, q);
-        if (d2 < best2) best2 = d2, best = std::sqrt(d2), nearest = q;
+        if (d2 < best2) best2 = d2, best = std::sqrt(d2), nearest = q, found = true;
       }
       continue;
     }
@@ -271,7 +272,7 @@ double SolidMesh::distance(const Point3& p, Point3* closest) const {
     if (far_lb < best) stack[top] = farther, lower[top++] = far_lb;
     if (near_lb < best) stack[top] = nearer, lower[top++] = near_lb;
   }
-  if (closest) *closest = nearest;
+  if (closest && found) *closest = nearest;
   return best;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -53,7 +54,10 @@ class SolidMesh {
   // bounding sphere is farther than the best distance so far is skipped),
   // exact up to round-off. Allocates nothing; may run concurrently. An
   // empty mesh is infinitely far (HUGE_VAL, *closest left as it was).
-  double distance(const Point3& p, Point3* closest = nullptr) const;
+  // With a `limit`, a surface no nearer than it is reported at `limit`
+  // (*closest left as it was): the search starts with that bound, so
+  // points far from the surface cost almost nothing.
+  double distance(const Point3& p, Point3* closest = nullptr, double limit = HUGE_VAL) const;
 
   const Point3& lower() const { return lo_; }
   const Point3& upper() const { return hi_; }

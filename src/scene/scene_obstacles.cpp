@@ -199,9 +199,10 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
 }
 
 // A mesh's signed distance, sampled at half the cell size over its bounds
-// within 3 cells, cut to the box within 3 cells (physics/obstacle.hpp): the
-// contact rows look one cell out from the box's nodes, the grains and the
-// moves no further than the box.
+// within 3 cells, cut to the box within 3 cells, and exact to 3.5 cells
+// from its surface (physics/obstacle.hpp): the contact rows look one cell
+// out from the box's nodes, the grains and the moves no further than the
+// box, a body's contacts one cell from its surface.
 std::shared_ptr<const DistanceGrid> sample_distance(TableReader& t, const SolidMesh& mesh,
                                                     const ObstacleConfig& o, const SceneConfig& s) {
   const double h = s.cell_size(), margin = 3.0 * h;
@@ -212,14 +213,14 @@ std::shared_ptr<const DistanceGrid> sample_distance(TableReader& t, const SolidM
     hi[a] = std::min(o.mesh_upper[a] + margin, s.size[a] + margin);
     samples *= std::ceil((hi[a] - lo[a]) / (0.5 * h)) + 1.0;
   }
-  constexpr double kMaxSamples = 1e8;  // 800 MB of doubles
+  constexpr double kMaxSamples = 5e7;  // 400 MB of doubles
   if (samples > kMaxSamples)
     t.fail_at(t.node("file"), "file",
               fmt::format("the mesh's distance would be sampled at {:.3g} points (half the cell "
                           "size over its bounds in the box); allowed: at most {:.0e} (a coarser "
                           "grid or a smaller mesh)",
                           samples, kMaxSamples));
-  return std::make_shared<const DistanceGrid>(mesh, lo, hi, 0.5 * h);
+  return std::make_shared<const DistanceGrid>(mesh, lo, hi, 0.5 * h, 4.0 * h);
 }
 
 // How far a rigid ball `b` reaches into the solid `o` (m; <= 0 when clear
