@@ -76,12 +76,12 @@ void print_obstacles(const SceneConfig& s) {
                             o.radius, o.height);
         break;
       case ObstacleShape::Polygon:
-        where = fmt::format("{} corners within {} to {}", o.vertices.size(), point(o.mesh_lower, d),
-                            point(o.mesh_upper, d));
+        where = fmt::format("{} corners within {} to {}", o.vertices.size(), point(o.extent_min, d),
+                            point(o.extent_max, d));
         break;
       case ObstacleShape::Mesh:
-        where = fmt::format("from \"{}\", within {} to {}", o.file_path, point(o.mesh_lower, d),
-                            point(o.mesh_upper, d));
+        where = fmt::format("from \"{}\", within {} to {}", o.file_path, point(o.extent_min, d),
+                            point(o.extent_max, d));
         break;
     }
     const std::string body =

@@ -175,7 +175,7 @@ struct ObstacleConfig {
   double scale = 1.0;
   Vec3d translate{0, 0, 0};
   std::shared_ptr<const DistanceGrid> distance{};
-  Vec3d mesh_lower{0, 0, 0}, mesh_upper{0, 0, 0};  // the transformed mesh's bounds, m
+  Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
   Vec3d velocity{0, 0, 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
   // kg/m^3: 0 for a fixed (or kinematic) obstacle; > 0 makes a disk or

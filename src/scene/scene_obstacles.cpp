@@ -106,8 +106,8 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
   for (int a = 0; a < s.dimension; ++a) {
     double lo = o.min[a], hi = o.max[a];
     if (o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh) {
-      lo = o.mesh_lower[a];
-      hi = o.mesh_upper[a];
+      lo = o.extent_min[a];
+      hi = o.extent_max[a];
     } else if (o.shape != ObstacleShape::Box) {
       const bool axial = o.shape == ObstacleShape::Cylinder && a == 2;
       lo = axial ? o.center[a] : o.center[a] - o.radius;
@@ -175,8 +175,8 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
     for (const Vec3d& v : o.vertices) corners.push_back({v[0], v[1]});
     o.polygon = std::make_shared<const SolidPolygon>(std::move(corners));
     for (int a = 0; a < 2; ++a) {
-      o.mesh_lower[a] = o.polygon->lower()[a];
-      o.mesh_upper[a] = o.polygon->upper()[a];
+      o.extent_min[a] = o.polygon->lower()[a];
+      o.extent_max[a] = o.polygon->upper()[a];
     }
   } else if (shape == "mesh") {
     o.shape = ObstacleShape::Mesh;
@@ -186,8 +186,8 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
     o.scale = m.scale;
     o.translate = m.translate;
     for (int a = 0; a < 3; ++a) {
-      o.mesh_lower[a] = m.mesh->lower()[a];
-      o.mesh_upper[a] = m.mesh->upper()[a];
+      o.extent_min[a] = m.mesh->lower()[a];
+      o.extent_max[a] = m.mesh->upper()[a];
     }
     mesh = std::move(m.mesh);
   } else {
@@ -209,8 +209,8 @@ std::shared_ptr<const DistanceGrid> sample_distance(TableReader& t, const SolidM
   Point3 lo{}, hi{};
   double samples = 1.0;
   for (int a = 0; a < 3; ++a) {
-    lo[a] = std::max(o.mesh_lower[a] - margin, -margin);
-    hi[a] = std::min(o.mesh_upper[a] + margin, s.size[a] + margin);
+    lo[a] = std::max(o.extent_min[a] - margin, -margin);
+    hi[a] = std::min(o.extent_max[a] + margin, s.size[a] + margin);
     samples *= std::ceil((hi[a] - lo[a]) / (0.5 * h)) + 1.0;
   }
   constexpr double kMaxSamples = 5e7;  // 400 MB of doubles
