@@ -12,6 +12,7 @@
 #include "checkpoint_state.hpp"
 #include "commands.hpp"
 #include "io/hash.hpp"
+#include "io/obstacle_geometry.hpp"
 #include "io/stats_writer.hpp"
 #include "io/writers.hpp"
 #include "physics/simulation.hpp"
@@ -48,7 +49,7 @@ void on_signal(int) { g_interrupted = 1; }
 // folder holds a run's outputs.
 const char* const kRunFiles[] = {"stats.csv",  "obstacles.csv",   "bodies.csv",
                                  "series.pvd", "grid_series.pvd", "scene.toml",
-                                 "run.json",   "checkpoint.bin"};
+                                 "run.json",   "checkpoint.bin",  "obstacles.obj"};
 
 std::size_t count_bodies(const SceneConfig& scene) {
   std::size_t n = 0;
@@ -393,6 +394,8 @@ int start_run(const RunOptions& opt) {
                     scene_to_toml(scene), opt.compress, opt.grid};
     ensure_directory((dir / "frames").string());
     write_file_atomic((dir / "scene.toml").string(), set.scene_text);
+    if (const std::string obj = format_obstacles_obj(scene); !obj.empty())
+      write_file_atomic((dir / "obstacles.obj").string(), obj);
     start_threads_and_signals(opt.threads);
     if (scene.dimension == 2) return Runner<2>(scene, set, Simulation<2>(scene)).run();
     return Runner<3>(scene, set, Simulation<3>(scene)).run();

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -344,6 +345,105 @@ TEST(ShapedObstacles, SphereRollsDownAMeshRamp) {
   const double a = (v2 - v1) / (t2 - t1), expected = 5.0 / 7.0 * 9.81 * std::sin(theta);
   std::cout << "sphere on a mesh ramp: " << a << " m/s^2, rolling " << expected << "\n";
   EXPECT_NEAR(a / expected, 1.0, 1e-6);
+}
+
+// ------------------------------------------------------------- the output
+
+// obstacles.obj (io/obstacle_geometry.hpp): every vertex it writes lies on
+// its obstacle's surface (signed distance 0 to round-off: a plane's cut
+// through the box, a box's corners, a sphere's and a cylinder's
+// tessellation, a polygon's corners, a mesh's own vertices), objects come
+// in the scene's order, faces index existing vertices, and a rigid body is
+// left out. `sablier run` writes it beside the frames.
+TEST(ShapedObstacles, ObstaclesObjHoldsTheirSurfaces) {
+  const fs::path dir = test::temp_dir("objout");
+  {
+    std::ofstream out(dir / "tet.obj");
+    out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+  }
+  const std::string text = R"(dimension = 3
+[grid]
+size = [0.5, 0.25, 0.25]
+resolution = [20, 10, 10]
+[[sand]]
+shape = "box"
+min = [0.2, 0.0, 0.1]
+max = [0.3, 0.1, 0.2]
+[[obstacle]]
+shape = "plane"
+point = [0.0, 0.0, 0.02]
+normal = [0.2, 0.1, 1.0]
+[[obstacle]]
+shape = "sphere"
+center = [0.45, 0.2, 0.2]
+radius = 0.03
+[[obstacle]]
+shape = "sphere"
+center = [0.1, 0.1, 0.2]
+radius = 0.03
+density = 2000
+[[obstacle]]
+shape = "cylinder"
+center = [0.05, 0.2, 0.0]
+radius = 0.02
+height = 0.1
+[[obstacle]]
+shape = "box"
+min = [-0.1, -0.1, -0.1]
+max = [0.02, 0.3, 0.3]
+[[obstacle]]
+shape = "mesh"
+file = "tet.obj"
+scale = 0.05
+translate = [0.35, 0.1, 0.05]
+)";
+  const fs::path scene_path = dir / "scene.toml";
+  std::ofstream(scene_path) << text;
+  const SceneConfig s = load_scene(scene_path.string());
+  const test::Result r = test::sablier("run " + scene_path.string() + " --out " +
+                                       (dir / "out").string() + " --set time.frames=1 --quiet");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "out" / "obstacles.obj");
+  ASSERT_TRUE(in) << "no obstacles.obj";
+  std::vector<Vec<3>> v;
+  std::vector<int> owner, objects;
+  std::string line;
+  std::size_t faces = 0;
+  while (std::getline(in, line)) {
+    std::istringstream l(line);
+    std::string tag;
+    l >> tag;
+    if (tag == "o") {
+      std::string name;
+      l >> name;
+      ASSERT_EQ(name.rfind("obstacle_", 0), 0u);
+      objects.push_back(std::stoi(name.substr(9)));
+    } else if (tag == "v") {
+      Vec<3> x;
+      l >> x[0] >> x[1] >> x[2];
+      v.push_back(x);
+      owner.push_back(objects.back());
+    } else if (tag == "f") {
+      ++faces;
+      int i = 0, n = 0;
+      while (l >> i) {
+        ASSERT_TRUE(i >= 1 && i <= static_cast<int>(v.size())) << line;
+        ++n;
+      }
+      ASSERT_GE(n, 3);
+    }
+  }
+  EXPECT_EQ(objects, (std::vector<int>{0, 1, 3, 4, 5}));  // not the body, 2
+  EXPECT_GT(faces, 0u);
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const ObstacleConfig& c = s.obstacles[owner[k]];
+    if (c.shape == ObstacleShape::Mesh) continue;  // its own vertices, as read
+    Vec<3> n;
+    // 1e-9 m: the file's 10 significant digits.
+    EXPECT_NEAR(signed_distance(make_obstacle<3>(c), v[k], &n), 0.0, 1e-9)
+        << "obstacle " << owner[k] << " vertex " << v[k].transpose();
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -153,6 +153,7 @@ enum class ObstacleShape { Plane, Box, Ball, Cylinder, Polygon, Mesh };
 
 class SolidPolygon;  // core/polygon.hpp
 class DistanceGrid;  // core/distance_grid.hpp
+struct TriangleMesh;  // core/mesh.hpp
 
 struct ObstacleConfig {
   ObstacleShape shape = ObstacleShape::Plane;
@@ -175,6 +176,7 @@ struct ObstacleConfig {
   double scale = 1.0;
   Vec3d translate{0, 0, 0};
   std::shared_ptr<const DistanceGrid> distance{};
+  std::shared_ptr<const TriangleMesh> surface{};   // the triangles, transformed (for outputs)
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
   Vec3d velocity{0, 0, 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t

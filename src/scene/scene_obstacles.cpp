@@ -185,6 +185,7 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
     o.file_path = std::move(m.file_path);
     o.scale = m.scale;
     o.translate = m.translate;
+    o.surface = std::move(m.surface);
     for (int a = 0; a < 3; ++a) {
       o.extent_min[a] = m.mesh->lower()[a];
       o.extent_max[a] = m.mesh->upper()[a];

@@ -251,6 +251,7 @@ MeshKeys read_mesh_keys(TableReader& t, const SceneConfig& s) {
   for (Point3& v : mesh.vertices)
     for (int a = 0; a < 3; ++a) v[a] = m.scale * v[a] + m.translate[a];
   m.mesh = std::make_shared<const SolidMesh>(mesh);
+  m.surface = std::make_shared<const TriangleMesh>(std::move(mesh));
   return m;
 }
 

@@ -34,6 +34,7 @@ struct MeshKeys {
   double scale = 1.0;
   Vec3d translate{0, 0, 0};
   std::shared_ptr<const SolidMesh> mesh;
+  std::shared_ptr<const TriangleMesh> surface;  // the same triangles, transformed
 };
 MeshKeys read_mesh_keys(TableReader& t, const SceneConfig& s);
 
