@@ -347,6 +347,57 @@ TEST(ShapedObstacles, SphereRollsDownAMeshRamp) {
   EXPECT_NEAR(a / expected, 1.0, 1e-6);
 }
 
+// A sphere of radius 4 cells dropped onto a mesh slab from 3 cm above it
+// (1 cm cells) moves as it does over the same slab as box obstacles, whose
+// distance is exact: the same heights at every step while it falls, and
+// the same rest on the top face. A ball's contact with a solid is measured
+// from its centre, so the sampled distance must be exact that far from the
+// surface, not only within the few cells the grains need.
+TEST(ShapedObstacles, LargeSphereFallsOntoAMeshSlabAsOntoABox) {
+  const fs::path dir = test::temp_dir("bigball"), obj = dir / "slab.obj";
+  {
+    // The slab and a post in a corner, one closed mesh of two boxes: the
+    // post makes the mesh's bounds, and so the sampled region, reach above
+    // the sphere.
+    std::ofstream out(obj);
+    int base = 1;
+    for (const TriangleMesh& m : {test::box_mesh({-0.1, -0.1, -0.1}, {0.3, 0.3, 0.05}),
+                                  test::box_mesh({0.0, 0.0, 0.0}, {0.03, 0.03, 0.19})}) {
+      for (const Point3& v : m.vertices) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
+      for (const auto& t : m.triangles)
+        out << "f " << t[0] + base << " " << t[1] + base << " " << t[2] + base << "\n";
+      base += static_cast<int>(m.vertices.size());
+    }
+  }
+  const std::string head =
+      "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[grid]\nsize = [0.2, 0.2, 0.2]\n"
+      "resolution = [20, 20, 20]\n[[sand]]\nshape = \"box\"\nmin = [0.17, 0.17, 0.15]\n"
+      "max = [0.19, 0.19, 0.17]\n[[obstacle]]\n";
+  const std::string ball =
+      "[[obstacle]]\nshape = \"sphere\"\ncenter = [0.1, 0.1, 0.12]\nradius = 0.04\n"
+      "density = 2000\n";
+  Simulation<3> on_mesh(
+      parse_scene(head + "shape = \"mesh\"\nfile = \"" + obj.string() + "\"\n" + ball, "m.toml"));
+  Simulation<3> on_box(parse_scene(
+      head + "shape = \"box\"\nmin = [-0.1, -0.1, -0.1]\nmax = [0.3, 0.3, 0.05]\n" +
+          "[[obstacle]]\nshape = \"box\"\nmin = [0.0, 0.0, 0.0]\nmax = [0.03, 0.03, 0.19]\n" +
+          ball,
+      "b.toml"));
+  fs::remove_all(dir);
+  double worst = 0.0;
+  while (on_box.time() < 0.3 - 1e-12) {
+    const double dt = std::min(1.0 / 120, 0.3 - on_box.time());
+    on_box.step(dt);
+    on_mesh.step(dt);
+    worst = std::max(worst, std::abs(on_mesh.obstacles().at(1).a[2] - on_box.obstacles().at(2).a[2]));
+  }
+  std::cout << "sphere onto a slab: mesh and box heights differ by at most " << worst
+            << " m; at 0.3 s " << on_mesh.obstacles().at(1).a[2] << " and "
+            << on_box.obstacles().at(2).a[2] << " m (rest: 0.09)\n";
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_NEAR(on_mesh.obstacles().at(1).a[2], 0.09, 1e-6);
+}
+
 // ------------------------------------------------------------- the output
 
 // obstacles.obj (io/obstacle_geometry.hpp): every vertex it writes lies on

@@ -175,7 +175,8 @@ struct ObstacleConfig {
   std::string file_path{};
   double scale = 1.0;
   Vec3d translate{0, 0, 0};
-  std::shared_ptr<const DistanceGrid> distance{};
+  std::shared_ptr<const SolidMesh> solid{};        // the closed mesh, transformed (exact queries)
+  std::shared_ptr<const DistanceGrid> distance{};  // sampled once every obstacle is read
   std::shared_ptr<const TriangleMesh> surface{};   // the triangles, transformed (for outputs)
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]

@@ -199,21 +199,23 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
   }
 }
 
-// A mesh's signed distance, sampled at half the cell size over its bounds
-// within 3 cells, cut to the box within 3 cells, and exact to 3.5 cells
-// from its surface (physics/obstacle.hpp): the contact rows look one cell
-// out from the box's nodes, the grains and the moves no further than the
-// box, a body's contacts one cell from its surface.
-std::shared_ptr<const DistanceGrid> sample_distance(TableReader& t, const SolidMesh& mesh,
-                                                    const ObstacleConfig& o, const SceneConfig& s) {
-  const double h = s.cell_size(), margin = 3.0 * h;
-  Point3 lo{}, hi{};
-  double samples = 1.0;
+// The box a mesh's signed distance is sampled over: its bounds within 3
+// cells, cut to the box within 3 cells (the contact rows look one cell out
+// from the box's nodes, the grains and the moves no further than the box).
+void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Point3& hi) {
+  const double margin = 3.0 * s.cell_size();
   for (int a = 0; a < 3; ++a) {
     lo[a] = std::max(o.extent_min[a] - margin, -margin);
     hi[a] = std::min(o.extent_max[a] + margin, s.size[a] + margin);
-    samples *= std::ceil((hi[a] - lo[a]) / (0.5 * h)) + 1.0;
   }
+}
+
+// At half the cell size: at most kMaxSamples points.
+void check_sample_count(TableReader& t, const ObstacleConfig& o, const SceneConfig& s) {
+  Point3 lo{}, hi{};
+  sample_region(o, s, lo, hi);
+  double samples = 1.0;
+  for (int a = 0; a < 3; ++a) samples *= std::ceil((hi[a] - lo[a]) / (0.5 * s.cell_size())) + 1.0;
   constexpr double kMaxSamples = 5e7;  // 400 MB of doubles
   if (samples > kMaxSamples)
     t.fail_at(t.node("file"), "file",
@@ -221,16 +223,38 @@ std::shared_ptr<const DistanceGrid> sample_distance(TableReader& t, const SolidM
                           "size over its bounds in the box); allowed: at most {:.0e} (a coarser "
                           "grid or a smaller mesh)",
                           samples, kMaxSamples));
-  return std::make_shared<const DistanceGrid>(mesh, lo, hi, 0.5 * h, 4.0 * h);
+}
+
+// Every mesh obstacle's signed distance, sampled at half the cell size
+// (physics/obstacle.hpp) and exact to 3.5 cells from its surface, or
+// further where a rigid ball could touch it: a ball's contact is measured
+// from its centre (physics/transfer.cpp), so the band reaches one radius
+// beyond that.
+void sample_mesh_distances(SceneConfig& s) {
+  double radius = 0.0;
+  for (const ObstacleConfig& o : s.obstacles)
+    if (o.dynamic()) radius = std::max(radius, o.radius);
+  const double h = s.cell_size();
+  for (ObstacleConfig& o : s.obstacles) {
+    if (o.shape != ObstacleShape::Mesh) continue;
+    Point3 lo{}, hi{};
+    sample_region(o, s, lo, hi);
+    o.distance = std::make_shared<const DistanceGrid>(*o.solid, lo, hi, 0.5 * h, 4.0 * h + radius);
+  }
 }
 
 // How far a rigid ball `b` reaches into the solid `o` (m; <= 0 when clear
 // of it or touching it).
 template <int D>
 double overlap(const ObstacleConfig& b, const ObstacleConfig& o) {
-  const Obstacle<D> ball = make_obstacle<D>(b), other = make_obstacle<D>(o);
+  const Obstacle<D> ball = make_obstacle<D>(b);
+  if (o.shape == ObstacleShape::Mesh) {  // not sampled yet: the exact distance
+    const Point3 c{b.center[0], b.center[1], b.center[2]};
+    const double d = o.solid->distance(c);
+    return ball.radius - (o.solid->contains(c) ? -d : d);
+  }
   Vec<D> n;
-  return ball.radius - signed_distance(other, ball.a, &n);
+  return ball.radius - signed_distance(make_obstacle<D>(o), ball.a, &n);
 }
 
 // A rigid body must start inside the box and clear of every solid read
@@ -293,7 +317,10 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   } else {
     check_bounds_reach_box(t, o, s);
   }
-  if (mesh) o.distance = sample_distance(t, *mesh, o, s);
+  if (mesh) {
+    o.solid = std::move(mesh);
+    check_sample_count(t, o, s);
+  }
   check_bodies_clear(t, o, s);
   return o;
 }
@@ -305,6 +332,7 @@ void read_all_obstacles(TableReader& root, SceneConfig& s) {
   if (const toml::array* list = root.array_of_tables("obstacle"))
     root.for_each_table(*list, "obstacle",
                         [&](TableReader t) { s.obstacles.push_back(read_obstacle(std::move(t), s)); });
+  sample_mesh_distances(s);
 }
 
 const char* obstacle_shape_name(ObstacleShape shape, int dimension) {
