@@ -380,8 +380,7 @@ TEST(ShapedObstacles, LargeSphereFallsOntoAMeshSlabAsOntoABox) {
       parse_scene(head + "shape = \"mesh\"\nfile = \"" + obj.string() + "\"\n" + ball, "m.toml"));
   Simulation<3> on_box(parse_scene(
       head + "shape = \"box\"\nmin = [-0.1, -0.1, -0.1]\nmax = [0.3, 0.3, 0.05]\n" +
-          "[[obstacle]]\nshape = \"box\"\nmin = [0.0, 0.0, 0.0]\nmax = [0.03, 0.03, 0.19]\n" +
-          ball,
+          "[[obstacle]]\nshape = \"box\"\nmin = [0.0, 0.0, 0.0]\nmax = [0.03, 0.03, 0.19]\n" + ball,
       "b.toml"));
   fs::remove_all(dir);
   double worst = 0.0;
@@ -389,7 +388,8 @@ TEST(ShapedObstacles, LargeSphereFallsOntoAMeshSlabAsOntoABox) {
     const double dt = std::min(1.0 / 120, 0.3 - on_box.time());
     on_box.step(dt);
     on_mesh.step(dt);
-    worst = std::max(worst, std::abs(on_mesh.obstacles().at(1).a[2] - on_box.obstacles().at(2).a[2]));
+    worst =
+        std::max(worst, std::abs(on_mesh.obstacles().at(1).a[2] - on_box.obstacles().at(2).a[2]));
   }
   std::cout << "sphere onto a slab: mesh and box heights differ by at most " << worst
             << " m; at 0.3 s " << on_mesh.obstacles().at(1).a[2] << " and "
