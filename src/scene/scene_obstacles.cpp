@@ -201,9 +201,12 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
 
 // The box a mesh's signed distance is sampled over: its bounds within 3
 // cells, cut to the box within 3 cells (the contact rows look one cell out
-// from the box's nodes, the grains and the moves no further than the box).
-void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Point3& hi) {
-  const double margin = 3.0 * s.cell_size();
+// from the box's nodes, the grains and the moves no further than the box),
+// and `reach` further (a rigid ball's radius: its contacts are measured
+// from its centre).
+void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Point3& hi,
+                   double reach = 0.0) {
+  const double margin = 3.0 * s.cell_size() + reach;
   for (int a = 0; a < 3; ++a) {
     lo[a] = std::max(o.extent_min[a] - margin, -margin);
     hi[a] = std::min(o.extent_max[a] + margin, s.size[a] + margin);
@@ -228,8 +231,8 @@ void check_sample_count(TableReader& t, const ObstacleConfig& o, const SceneConf
 // Every mesh obstacle's signed distance, sampled at half the cell size
 // (physics/obstacle.hpp) and exact to 3.5 cells from its surface, or
 // further where a rigid ball could touch it: a ball's contact is measured
-// from its centre (physics/transfer.cpp), so the band reaches one radius
-// beyond that.
+// from its centre (physics/transfer.cpp), so the band and the sampled
+// region reach one radius beyond that.
 void sample_mesh_distances(SceneConfig& s) {
   double radius = 0.0;
   for (const ObstacleConfig& o : s.obstacles)
@@ -238,7 +241,7 @@ void sample_mesh_distances(SceneConfig& s) {
   for (ObstacleConfig& o : s.obstacles) {
     if (o.shape != ObstacleShape::Mesh) continue;
     Point3 lo{}, hi{};
-    sample_region(o, s, lo, hi);
+    sample_region(o, s, lo, hi, radius);
     o.distance = std::make_shared<const DistanceGrid>(*o.solid, lo, hi, 0.5 * h, 4.0 * h + radius);
   }
 }
