@@ -88,8 +88,10 @@ void print_obstacles(const SceneConfig& s) {
         o.dynamic() ? fmt::format(", rigid body of density {:.6g} kg/m^3 starting at {} m/s",
                                   o.density, point(o.velocity, d))
                     : "";
-    std::printf("  obstacle[%zu] %s %s, mu %g%s\n", k, obstacle_shape_name(o.shape, d),
-                where.c_str(), o.mu, body.c_str());
+    const std::string gone =
+        std::isfinite(o.until) ? fmt::format(", taken away at {:.6g} s", o.until) : "";
+    std::printf("  obstacle[%zu] %s %s, mu %g%s%s\n", k, obstacle_shape_name(o.shape, d),
+                where.c_str(), o.mu, body.c_str(), gone.c_str());
   }
 }
 

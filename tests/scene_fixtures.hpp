@@ -109,6 +109,7 @@ velocity = [1.0, -0.1]
 shape = "box"
 min = [0.8, 0.6]
 max = [0.9, 0.7]
+until = 0.5
 [[obstacle]]
 shape = "disk"
 center = [1.7, 0.8]
@@ -232,6 +233,7 @@ inline void expect_same(const SceneConfig& a, const SceneConfig& b) {
     EXPECT_EQ(p.height, q.height);
     EXPECT_EQ(p.mu, q.mu);
     EXPECT_EQ(p.velocity, q.velocity);
+    EXPECT_EQ(p.until, q.until);
     EXPECT_EQ(p.vertices, q.vertices);
     EXPECT_EQ(p.file_path, q.file_path);
     EXPECT_EQ(p.scale, q.scale);

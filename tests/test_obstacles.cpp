@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -168,6 +169,55 @@ TEST(Obstacles, ConveyorBeltDragsABlockAtCoulombRate) {
             << 0.3 * 9.81 * 0.1 << "), " << late << " m/s at 0.4 s\n";
   EXPECT_NEAR(early / (0.3 * 9.81 * 0.1), 1.0, 1e-3);
   EXPECT_NEAR(late, 0.5, 1e-3);
+}
+
+// A gate taken away (`until`): the 2D column of collapse2d (20 cm high)
+// held by a smooth box gate against its right face stays at rest while the
+// gate is there (max speed below 1e-3 m/s, as a bed at rest), and the gate
+// carries a lateral thrust between Rankine's active and passive ones,
+// K gamma H^2 / 2 with K = (1 -+ sin phi) / (1 +- sin phi), sin phi = mu
+// (the 2D Mohr-Coulomb angle, METHOD.md section 4): a rigid-plastic column
+// at rest is statically indeterminate between the two. Once the gate is
+// gone at 0.2 s it feels no force and the column collapses: by 0.5 s the
+// front has run out more than 10 cm (measured: 21 cm).
+TEST(Obstacles, GateTakenAwayReleasesTheColumn) {
+  SceneConfig s = scene("collapse2d.toml");
+  ObstacleConfig gate;
+  gate.shape = ObstacleShape::Box;
+  gate.min = {0.25, 0.0, 0};
+  gate.max = {0.27, 0.25, 0};
+  gate.mu = 0.0;
+  gate.until = 0.2;
+  s.obstacles.push_back(gate);
+  Simulation<2> sim(s);
+  const auto front = [&] {
+    double x = 0.0;
+    for (const Vec<2>& p : sim.particles().position) x = std::max(x, p[0]);
+    return x;
+  };
+  StepInfo last;
+  while (sim.time() < 0.2 - 1e-12) last = sim.step(sim.adaptive_dt(0.2 - sim.time()));
+  const double held_speed = sim.max_speed(), held_front = front();
+  const double thrust = last.obstacle_force.at(0)[0];
+  run_until(sim, 0.25);
+  last = sim.step(sim.adaptive_dt(0.01));
+  const Vec3d f = last.obstacle_force.at(0);
+  const double after = std::abs(f[0]) + std::abs(f[1]);
+  run_until(sim, 0.5);
+  std::cout << "gate: at 0.2 s max speed " << held_speed << " m/s, front " << held_front
+            << " m, thrust " << thrust << " N/m; after removal force " << after
+            << ", front at 0.5 s " << front() << " m\n";
+  EXPECT_LT(held_speed, 1e-3);
+  EXPECT_LE(held_front, 0.25);
+  const double gamma = 2500 * 0.6 * 9.81, H = 0.2, sin_phi = 0.5;
+  const double active = (1 - sin_phi) / (1 + sin_phi) * gamma * H * H / 2;
+  const double passive = (1 + sin_phi) / (1 - sin_phi) * gamma * H * H / 2;
+  std::cout << "gate thrust " << thrust << " N/m between Rankine's " << active << " and "
+            << passive << "\n";
+  EXPECT_GE(thrust, active);
+  EXPECT_LE(thrust, passive);
+  EXPECT_EQ(after, 0.0);
+  EXPECT_GT(front(), 0.35);
 }
 
 // Contact rows are coloured like the sand's: the same result, bit for bit,

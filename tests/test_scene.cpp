@@ -81,6 +81,7 @@ TEST(SceneFile, EveryKey2D) {
   box.shape = ObstacleShape::Box;
   box.min = v(0.8, 0.6);
   box.max = v(0.9, 0.7);
+  box.until = 0.5;  // taken away at 0.5 s
   disk.shape = ObstacleShape::Ball;
   disk.center = v(1.7, 0.8);
   disk.radius = 0.05;

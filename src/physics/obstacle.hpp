@@ -29,6 +29,8 @@ struct Obstacle {
   std::shared_ptr<const DistanceGrid> distance;  // 3D meshes
   double mu = 0.5;  // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
+  double until = 1e300;  // s: taken away from this time on (scene's obstacle[].until)
+  bool gone = false;     // taken away: no longer there at all
   // A rigid body (a ball with a density): its state is advanced by the
   // simulation, not by at_time. Mass in kg (kg/m in 2D), moment of inertia
   // about its centre in kg m^2 (kg m in 2D), angular velocity in rad/s
@@ -64,6 +66,7 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   }
   o.polygon = c.polygon;
   o.distance = c.distance;
+  o.until = c.until;
   if (c.shape == ObstacleShape::Plane) o.b.normalize();
   o.radius = c.radius;
   o.height = c.height;
@@ -85,6 +88,9 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
 template <int D>
 Obstacle<D> at_time(Obstacle<D> o, double t) {
   if (o.dynamic) return o;
+  // A step starting within a nanosecond of `until` (frame ends are sums of
+  // rounded step lengths) already goes without it.
+  o.gone = t >= o.until - 1e-9;
   const Vec<D> shift = t * o.velocity;
   o.a += shift;
   if (o.shape == ObstacleShape::Box) o.b += shift;
@@ -102,6 +108,11 @@ std::vector<Obstacle<D>> make_obstacles(const SceneConfig& scene, double t = 0.0
 // Signed distance of x to the obstacle (m) and the outward normal there.
 template <int D>
 inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* normal) {
+  if (o.gone) {
+    *normal = Vec<D>::Zero();
+    (*normal)[D - 1] = 1.0;
+    return 1e300;
+  }
   switch (o.shape) {
     case ObstacleShape::Plane: {
       *normal = o.b;

@@ -181,6 +181,9 @@ struct ObstacleConfig {
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
   double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
   Vec3d velocity{0, 0, 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
+  // s: a fixed obstacle is taken away for the steps that start at or after
+  // this time (a gate lifted, a shutter opened); infinity = never.
+  double until = std::numeric_limits<double>::infinity();
   // kg/m^3: 0 for a fixed (or kinematic) obstacle; > 0 makes a disk or
   // sphere a rigid body that the sand pushes (two-way coupling, METHOD.md
   // section 3), starting at `velocity` and falling under gravity.

@@ -313,6 +313,12 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
                             obstacle_shape_name(o.shape, d), d == 2 ? "disk" : "sphere"));
     o.density = t.number("density", std::nullopt, kDensityRange);
   }
+  if (t.has("until")) {
+    if (o.dynamic())
+      t.fail_at(t.node("until"), "until",
+                "a rigid body cannot be taken away; allowed: until on fixed obstacles only");
+    o.until = t.number("until", std::nullopt, kPositive);
+  }
   check_motion(t, o, d);
   t.reject_unknown();
   if (o.shape == ObstacleShape::Plane) {
@@ -362,6 +368,7 @@ std::vector<std::string> obstacle_scene_keys() {
   keys.push_back("obstacle[].mu");
   keys.push_back("obstacle[].velocity");
   keys.push_back("obstacle[].density");
+  keys.push_back("obstacle[].until");
   return keys;
 }
 

@@ -129,6 +129,7 @@ std::string obstacle_lines(const ObstacleConfig& o, int d) {
   }
   out += fmt::format("mu = {}\nvelocity = {}\n", num(o.mu), vecf(o.velocity, d));
   if (o.dynamic()) out += fmt::format("density = {}\n", num(o.density));
+  if (std::isfinite(o.until)) out += fmt::format("until = {}\n", num(o.until));
   return out;
 }
 
