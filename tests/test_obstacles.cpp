@@ -212,8 +212,8 @@ TEST(Obstacles, GateTakenAwayReleasesTheColumn) {
   const double gamma = 2500 * 0.6 * 9.81, H = 0.2, sin_phi = 0.5;
   const double active = (1 - sin_phi) / (1 + sin_phi) * gamma * H * H / 2;
   const double passive = (1 + sin_phi) / (1 - sin_phi) * gamma * H * H / 2;
-  std::cout << "gate thrust " << thrust << " N/m between Rankine's " << active << " and "
-            << passive << "\n";
+  std::cout << "gate thrust " << thrust << " N/m between Rankine's " << active << " and " << passive
+            << "\n";
   EXPECT_GE(thrust, active);
   EXPECT_LE(thrust, passive);
   EXPECT_EQ(after, 0.0);

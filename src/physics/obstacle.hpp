@@ -29,8 +29,8 @@ struct Obstacle {
   std::shared_ptr<const DistanceGrid> distance;  // 3D meshes
   double mu = 0.5;  // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
-  double until = 1e300;  // s: taken away from this time on (scene's obstacle[].until)
-  bool gone = false;     // taken away: no longer there at all
+  double until = 1e300;              // s: taken away from this time on (scene's obstacle[].until)
+  bool gone = false;                 // taken away: no longer there at all
   // A rigid body (a ball with a density): its state is advanced by the
   // simulation, not by at_time. Mass in kg (kg/m in 2D), moment of inertia
   // about its centre in kg m^2 (kg m in 2D), angular velocity in rad/s
