@@ -44,6 +44,7 @@ struct RenderCommandOptions {
   int width = 800;
   int height = 0;  // 0: from the domain's aspect ratio
   bool gif = false, mp4 = false;
+  bool cut = false;  // 3D: only the far half of the box, cut across the view
 };
 
 // `sablier plot DIR`: a PNG of the run's stats.csv.

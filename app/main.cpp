@@ -56,6 +56,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("dir", render.dir, "Output folder of a run")->required();
   render_cmd->add_option("--color", render.color, "speed | pressure | phi | shear_rate | id");
   render_cmd->add_option("--view", render.view, "3D view: front | side | top | iso | AZIMUTH,ELEVATION (degrees)");
+  render_cmd->add_flag("--cut", render.cut,
+                       "3D: show only the far half of the box (grains and solids), cut through "
+                       "its middle across the axis nearest the view");
   render_cmd->add_option("--width", render.width, "Picture width in pixels (default 800)");
   render_cmd->add_option("--height", render.height, "Picture height (default: fits the domain)");
   render_cmd->add_option("--frames", render.frames, "all | last | a frame number");

@@ -215,6 +215,7 @@ RenderOptions parse_render_options(const RenderCommandOptions& o) {
     throw BadInput("--height: must be 16 to 8192 pixels");
   opt.width = o.width;
   opt.height = o.height;
+  opt.cut = o.cut;
   return opt;
 }
 

@@ -319,6 +319,43 @@ TEST(Render, ThreeDObstaclesAreShadedAmongTheGrains) {
   }
 }
 
+// A cutaway (`--cut`) keeps the half of the box away from the viewer,
+// across the axis nearest the view: front (looking along +y) keeps
+// y >= mid, side (from +x) x <= mid, top (from +z) z <= mid. A grain in the
+// near half is not drawn, and a solid straddling the cut shows its cut
+// face, lit flat, where the grain stood in front of it.
+TEST(Render, CutawayShowsTheFarHalf) {
+  const Box box = unit_box(3, 1.0, 0.3, 0.25);
+  const Box front = cut_box(box, View::front()), side = cut_box(box, View::side()),
+            top = cut_box(box, View::top());
+  EXPECT_EQ(front.lo[1], 0.15);
+  EXPECT_EQ(front.hi[1], 0.3);
+  EXPECT_EQ(side.lo[0], 0.0);
+  EXPECT_EQ(side.hi[0], 0.5);
+  EXPECT_EQ(top.lo[2], 0.0);
+  EXPECT_EQ(top.hi[2], 0.125);
+  const double centre[3] = {0.5, 0.15, 0.12}, radius = 0.06;
+  RenderOptions opt;
+  opt.view = View::front(), opt.width = 500;
+  opt.height = auto_height(box, opt.view, opt.width);
+  opt.obstacles = {ball(centre[0], centre[1], centre[2], radius)};
+  const Camera cam(box, opt.view, opt.width, opt.height);
+  const Camera::Point c = cam.project(centre);
+  ParticleFrame f;
+  f.dimension = 3, f.time = 0.25;
+  double in_front[3];
+  cam.unproject(c.x, c.y, c.depth - radius - 0.015, in_front);
+  add_grain(&f, in_front, 1.0);
+  const Rgb whole = pixel_at(render_frame(f, box, {0.0, 2.0}, opt), c.x, c.y);
+  opt.cut = true;
+  const Canvas pic = render_frame(f, box, {0.0, 2.0}, opt);
+  EXPECT_FALSE(is_grey(whole));  // the grain, in front of the ball
+  EXPECT_TRUE(is_grey(pixel_at(pic, c.x, c.y)));  // the ball's cut face
+  // Lit flat: the same grey across the cut face's middle.
+  const double ppm = cam.pixels_per_metre();
+  EXPECT_EQ(pixel_at(pic, c.x, c.y), pixel_at(pic, c.x + 0.02 * ppm, c.y - 0.02 * ppm));
+}
+
 // Views by name or by explicit angles; malformed angles and elevations
 // beyond the poles are refused.
 TEST(Render, ViewsByNameOrAngles) {

@@ -365,8 +365,13 @@ void depth_line(Canvas& canvas, const std::vector<float>& zbuf, const Camera::Po
 // The grains as spheres and the box's edges, depth-tested against `zbuf`
 // (which may already hold the obstacles).
 void draw_spheres(Canvas& canvas, std::vector<float>& zbuf, const ParticleFrame& f, const Box& box,
-                  const Camera& cam, const Range& range, ColorBy color, int line_width) {
+                  const Camera& cam, const Range& range, ColorBy color, int line_width,
+                  const Box& shown) {
   for (std::size_t p = 0; p < f.count; ++p) {
+    bool in = true;
+    for (int a = 0; a < 3; ++a)
+      in = in && f.position[3 * p + a] >= shown.lo[a] && f.position[3 * p + a] <= shown.hi[a];
+    if (!in) continue;
     const double r = grain_radius(f.volume[p], 3);
     const double r_px = std::max(1.0, r * cam.pixels_per_metre());
     const Rgb base = viridis(value_fraction(attribute_value(f, color, p), range));
@@ -442,6 +447,20 @@ std::vector<ObstacleConfig> obstacles_at_frame(const RenderOptions& opt, double 
 
 }  // namespace
 
+Box cut_box(const Box& box, View view) {
+  if (box.dimension != 3) return box;
+  double right[3], up[3], back[3];
+  view_axes(view, right, up, back);
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(back[a]) > std::abs(back[axis])) axis = a;
+  Box half = box;
+  const double mid = 0.5 * (box.lo[axis] + box.hi[axis]);
+  // `back` points towards the viewer: keep the other side.
+  (back[axis] > 0.0 ? half.hi : half.lo)[axis] = mid;
+  return half;
+}
+
 Canvas render_frame(const ParticleFrame& f, const Box& box, const Range& range,
                     const RenderOptions& opt) {
   const std::vector<ObstacleConfig> obstacles = obstacles_at_frame(opt, f.time);
@@ -459,8 +478,17 @@ Canvas render_frame(const ParticleFrame& f, const Box& box, const Range& range,
   } else {
     std::vector<float> zbuf(static_cast<std::size_t>(canvas.width()) * canvas.height(),
                             std::numeric_limits<float>::infinity());
-    draw_obstacles_3d(canvas, zbuf, obstacles, f.time, box, cam, l.scale);
-    draw_spheres(canvas, zbuf, f, box, cam, range, opt.color, l.scale);
+    // A cutaway keeps the grains of the far half, and the solids clipped to
+    // it (their cut faces show); without one, every grain (those a run left
+    // outside the box included).
+    Box shown = box;
+    if (opt.cut) {
+      shown = cut_box(box, opt.view);
+    } else {
+      for (int a = 0; a < 3; ++a) shown.lo[a] = -HUGE_VAL, shown.hi[a] = HUGE_VAL;
+    }
+    draw_obstacles_3d(canvas, zbuf, obstacles, f.time, opt.cut ? shown : box, cam, l.scale);
+    draw_spheres(canvas, zbuf, f, box, cam, range, opt.color, l.scale, shown);
   }
   draw_legend(canvas, l, cam.content(), range, opt.color, f.time);
   return canvas;

@@ -76,7 +76,16 @@ struct RenderOptions {
   // The rigid bodies' track (bodies.csv): each body is drawn where its
   // last row at or before the frame's time puts it.
   std::vector<BodyRow> bodies;
+  // 3D: a cutaway. The box is cut in two through its middle across the
+  // axis nearest the view direction, and only the half away from the
+  // viewer is drawn: its grains, and the solids clipped to it, whose cut
+  // faces show. The picture keeps the whole box's framing and outline.
+  bool cut = false;
 };
+
+// The part of `box` a cutaway seen along `view` keeps (cut_box(box, view)
+// = box when the box is 2D).
+Box cut_box(const Box& box, View view);
 
 // Picture height that fits the box at `width` with no empty bands.
 int auto_height(const Box& box, View view, int width);
