@@ -349,7 +349,7 @@ TEST(Render, CutawayShowsTheFarHalf) {
   const Rgb whole = pixel_at(render_frame(f, box, {0.0, 2.0}, opt), c.x, c.y);
   opt.cut = true;
   const Canvas pic = render_frame(f, box, {0.0, 2.0}, opt);
-  EXPECT_FALSE(is_grey(whole));  // the grain, in front of the ball
+  EXPECT_FALSE(is_grey(whole));                   // the grain, in front of the ball
   EXPECT_TRUE(is_grey(pixel_at(pic, c.x, c.y)));  // the ball's cut face
   // Lit flat: the same grey across the cut face's middle.
   const double ppm = cam.pixels_per_metre();
