@@ -151,8 +151,8 @@ struct SpoutConfig {
 // its normal points away from. Polygon is 2D only, Mesh 3D only.
 enum class ObstacleShape { Plane, Box, Ball, Cylinder, Polygon, Mesh };
 
-class SolidPolygon;  // core/polygon.hpp
-class DistanceGrid;  // core/distance_grid.hpp
+class SolidPolygon;   // core/polygon.hpp
+class DistanceGrid;   // core/distance_grid.hpp
 struct TriangleMesh;  // core/mesh.hpp
 
 struct ObstacleConfig {
