@@ -174,8 +174,10 @@ int info_command() {
 #elif defined(__SSE2__)
   std::printf("simd       SSE2\n");
 #endif
-  std::printf("outputs    vtp (zlib %s with --compress), csv, ply, vti (--grid), series.pvd, obj (obstacles)\n",
-              ZLIB_VERSION);
+  std::printf(
+      "outputs    vtp (zlib %s with --compress), csv, ply, vti (--grid), series.pvd, obj "
+      "(obstacles)\n",
+      ZLIB_VERSION);
   std::printf("pictures   png (libpng %s)\n", PNG_LIBPNG_VER_STRING);
   const bool gif = tool_present("convert"), mp4 = tool_present("ffmpeg");
   std::printf("animations gif %s, mp4 %s\n",
