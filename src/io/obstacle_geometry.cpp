@@ -42,8 +42,9 @@ std::vector<P3> plane_cut(const Vec3d& point, const Vec3d& normal, const Vec3d& 
       for (int b = 0; b < d; ++b)
         x[b] = (i >> b & 1) ? size[b] : 0.0, y[b] = (j >> b & 1) ? size[b] : 0.0;
       const double sx = side(x), sy = side(y);
-      if ((sx < 0.0) == (sy < 0.0) && sx != 0.0) continue;
-      if (sx == sy) continue;  // the edge lies in the plane: its ends come with the other edges
+      // Both ends on one side: no crossing. Both on the plane: its ends
+      // come with the edges that reach them.
+      if (sx * sy > 0.0 || (sx == 0.0 && sy == 0.0)) continue;
       const double t = sx / (sx - sy);
       P3 p{0, 0, 0};
       for (int b = 0; b < d; ++b) p[b] = x[b] + t * (y[b] - x[b]);
