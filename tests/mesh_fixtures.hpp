@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "core/mesh.hpp"
@@ -69,6 +71,19 @@ inline TriangleMesh box_mesh(const Point3& lo, const Point3& hi) {
   m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
                  {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
   return m;
+}
+
+// Writes meshes to one OBJ file (`v` and `f` lines), their vertices
+// numbered one after the other.
+inline void write_obj(const std::filesystem::path& path, const std::vector<TriangleMesh>& meshes) {
+  std::ofstream out(path);
+  int base = 1;
+  for (const TriangleMesh& m : meshes) {
+    for (const Point3& v : m.vertices) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
+    for (const auto& t : m.triangles)
+      out << "f " << t[0] + base << " " << t[1] + base << " " << t[2] + base << "\n";
+    base += static_cast<int>(m.vertices.size());
+  }
 }
 
 }  // namespace sablier::test

@@ -204,13 +204,7 @@ TEST(ShapedObstacles, BlockSlidesDownAPolygonRampWithCoulombFriction) {
 // side walls carry no vertical load).
 TEST(ShapedObstacles, BedRestsOnAMeshSlab) {
   const fs::path obj = test::temp_dir("slab") / "slab.obj";
-  {
-    const TriangleMesh m = test::box_mesh({-0.1, -0.1, -0.1}, {0.3, 0.2, 0.045});
-    std::ofstream out(obj);
-    for (const Point3& v : m.vertices) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
-    for (const auto& t : m.triangles)
-      out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-  }
+  test::write_obj(obj, {test::box_mesh({-0.1, -0.1, -0.1}, {0.3, 0.2, 0.045})});
   SceneConfig s = load_scene(
       test::scene_file("bed3d.toml"),
       {"grid.size=[0.2,0.1,0.2]", "grid.resolution=[20,10,20]", "sand.0.min=[0.0,0.0,0.045]",
@@ -270,6 +264,25 @@ TEST(ShapedObstacles, HourglassDrainsThroughItsNeck) {
   EXPECT_NEAR(late / early, 1.0, 0.15);
 }
 
+// The acceleration of rigid body `k` between 0.1 s and 0.25 s, checking
+// that it rolls (omega r = v; `spin_sign` and `spin_axis` give the spin
+// component that rolls it: about z clockwise in 2D, about y in 3D here).
+template <int D>
+double rolling_acceleration(Simulation<D>& sim, std::size_t k, double r, int spin_axis,
+                            double spin_sign) {
+  const auto speed = [&] {
+    const Obstacle<D>& ball = sim.obstacles().at(k);
+    const double v = ball.velocity.norm();
+    EXPECT_NEAR(spin_sign * ball.spin[spin_axis] * r, v, 1e-6 * v);
+    return v;
+  };
+  run_until(sim, 0.1);
+  const double v1 = speed(), t1 = sim.time();
+  run_until(sim, 0.25);
+  const double v2 = speed(), t2 = sim.time();
+  return (v2 - v1) / (t2 - t1);
+}
+
 // A rigid disk (2 t/m^3, r = 4 cm) released on a rough polygon ramp at
 // theta = 20 degrees, away from the sand: its contact with the polygon is
 // a ball's contact with any solid (docs/method.md, "Frictional
@@ -291,16 +304,8 @@ TEST(ShapedObstacles, DiskRollsDownAPolygonRamp) {
       "]\nradius = 0.04\ndensity = 2000\n[[sand]]\nshape = \"box\"\nmin = [0.9, 0.4]\n"
       "max = [0.95, 0.45]\n";
   Simulation<2> sim(parse_scene(text, "roll.toml"));
-  const auto speed = [&] {
-    const Obstacle<2>& disk = sim.obstacles().at(1);
-    EXPECT_NEAR(-disk.spin[0] * r, disk.velocity.norm(), 1e-6 * disk.velocity.norm());
-    return disk.velocity.norm();
-  };
-  run_until(sim, 0.1);
-  const double v1 = speed(), t1 = sim.time();
-  run_until(sim, 0.25);
-  const double v2 = speed(), t2 = sim.time();
-  const double a = (v2 - v1) / (t2 - t1), expected = 2.0 / 3.0 * 9.81 * std::sin(theta);
+  const double a = rolling_acceleration(sim, 1, r, 0, -1.0);
+  const double expected = 2.0 / 3.0 * 9.81 * std::sin(theta);
   std::cout << "disk on a polygon ramp: " << a << " m/s^2, rolling " << expected << "\n";
   EXPECT_NEAR(a / expected, 1.0, 1e-6);
 }
@@ -333,16 +338,8 @@ TEST(ShapedObstacles, SphereRollsDownAMeshRamp) {
       "min = [0.5, 0.0, 0.25]\nmax = [0.55, 0.05, 0.3]\n";
   Simulation<3> sim(parse_scene(text, "ramp.toml"));
   fs::remove_all(dir);
-  const auto speed = [&] {
-    const Obstacle<3>& ball = sim.obstacles().at(1);
-    EXPECT_NEAR(ball.spin[1] * r, ball.velocity.norm(), 1e-6 * ball.velocity.norm());
-    return ball.velocity.norm();
-  };
-  run_until(sim, 0.1);
-  const double v1 = speed(), t1 = sim.time();
-  run_until(sim, 0.25);
-  const double v2 = speed(), t2 = sim.time();
-  const double a = (v2 - v1) / (t2 - t1), expected = 5.0 / 7.0 * 9.81 * std::sin(theta);
+  const double a = rolling_acceleration(sim, 1, r, 1, 1.0);
+  const double expected = 5.0 / 7.0 * 9.81 * std::sin(theta);
   std::cout << "sphere on a mesh ramp: " << a << " m/s^2, rolling " << expected << "\n";
   EXPECT_NEAR(a / expected, 1.0, 1e-6);
 }
@@ -355,20 +352,11 @@ TEST(ShapedObstacles, SphereRollsDownAMeshRamp) {
 // surface, not only within the few cells the grains need.
 TEST(ShapedObstacles, LargeSphereFallsOntoAMeshSlabAsOntoABox) {
   const fs::path dir = test::temp_dir("bigball"), obj = dir / "slab.obj";
-  {
-    // The slab and a post in a corner, one closed mesh of two boxes: the
-    // post makes the mesh's bounds, and so the sampled region, reach above
-    // the sphere.
-    std::ofstream out(obj);
-    int base = 1;
-    for (const TriangleMesh& m : {test::box_mesh({-0.1, -0.1, -0.1}, {0.3, 0.3, 0.05}),
-                                  test::box_mesh({0.0, 0.0, 0.0}, {0.03, 0.03, 0.19})}) {
-      for (const Point3& v : m.vertices) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
-      for (const auto& t : m.triangles)
-        out << "f " << t[0] + base << " " << t[1] + base << " " << t[2] + base << "\n";
-      base += static_cast<int>(m.vertices.size());
-    }
-  }
+  // The slab and a post in a corner, one closed mesh of two boxes: the post
+  // makes the mesh's bounds, and so the sampled region, reach above the
+  // sphere.
+  test::write_obj(obj, {test::box_mesh({-0.1, -0.1, -0.1}, {0.3, 0.3, 0.05}),
+                        test::box_mesh({0.0, 0.0, 0.0}, {0.03, 0.03, 0.19})});
   const std::string head =
       "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[grid]\nsize = [0.2, 0.2, 0.2]\n"
       "resolution = [20, 20, 20]\n[[sand]]\nshape = \"box\"\nmin = [0.17, 0.17, 0.15]\n"
