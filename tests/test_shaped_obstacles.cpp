@@ -60,6 +60,20 @@ TEST(ShapedObstacles, PolygonDistanceIsExact) {
     EXPECT_NEAR(nx, c.nx, 1e-14);
     EXPECT_NEAR(ny, c.ny, 1e-14);
   }
+  // A repeated corner (a zero-length edge) changes nothing, even at the
+  // corner itself, where the normal is an adjacent edge's.
+  const SolidPolygon twice({{0, 0}, {0, 0}, {0, 1}, {0.5, 1}, {0.5, 0.5}, {1, 0.5}, {1, 0}});
+  for (const Case& c : cases) {
+    double nx = 0, ny = 0;
+    EXPECT_NEAR(twice.signed_distance(c.x, c.y, &nx, &ny), c.dist, 1e-14);
+    EXPECT_NEAR(nx, c.nx, 1e-14);
+    EXPECT_NEAR(ny, c.ny, 1e-14);
+  }
+  {
+    double nx = 0, ny = 0;
+    EXPECT_EQ(twice.signed_distance(0.0, 0.0, &nx, &ny), 0.0);
+    EXPECT_NEAR(std::hypot(nx, ny), 1.0, 1e-14);
+  }
   // Inside, nearest the reflex corner (0.5, 0.5) itself, offset (-0.05, -0.1).
   double nx = 0, ny = 0;
   const double d = std::hypot(0.05, 0.1);

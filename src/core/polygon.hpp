@@ -55,8 +55,10 @@ class SolidPolygon {
       const Point2& b = v_[(i + 1) % n];
       const double ex = b[0] - a[0], ey = b[1] - a[1];
       const double len2 = ex * ex + ey * ey;
-      double t = len2 > 0.0 ? ((x - a[0]) * ex + (y - a[1]) * ey) / len2 : 0.0;
-      t = std::clamp(t, 0.0, 1.0);
+      // A repeated corner: its point is the neighbouring edges' end too,
+      // and it has no normal of its own.
+      if (!(len2 > 0.0)) continue;
+      const double t = std::clamp(((x - a[0]) * ex + (y - a[1]) * ey) / len2, 0.0, 1.0);
       const double px = a[0] + t * ex, py = a[1] + t * ey;
       const double d2 = (x - px) * (x - px) + (y - py) * (y - py);
       if (d2 < best) best = d2, qx = px, qy = py, edge = i;
