@@ -32,8 +32,6 @@ class DistanceGrid {
   // nearest point of the box plus the distance to it. Allocates nothing.
   double signed_distance(const Point3& p, Point3* normal) const;
 
-  std::size_t sample_count() const { return values_.size(); }
-
  private:
   Point3 lo_{};
   double h_ = 0.0;

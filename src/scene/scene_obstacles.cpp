@@ -152,7 +152,7 @@ void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
 }
 
 void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
-                   const SceneConfig& s, std::shared_ptr<const SolidMesh>& mesh) {
+                   const SceneConfig& s) {
   const int d = s.dimension;
   if (shape == "plane") {
     o.shape = ObstacleShape::Plane;
@@ -190,7 +190,7 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
       o.extent_min[a] = m.mesh->lower()[a];
       o.extent_max[a] = m.mesh->upper()[a];
     }
-    mesh = std::move(m.mesh);
+    o.solid = std::move(m.mesh);
   } else {
     o.shape = shape == "cylinder" ? ObstacleShape::Cylinder : ObstacleShape::Ball;
     o.center = t.vector("center", d, std::nullopt, Range());
@@ -302,8 +302,7 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
                        d == 2 ? Names{"sphere", "cylinder", "mesh"} : Names{"disk", "polygon"}, d);
   reject_other_obstacle_keys(t, shape);
   ObstacleConfig o;
-  std::shared_ptr<const SolidMesh> mesh;
-  read_geometry(t, shape, o, s, mesh);
+  read_geometry(t, shape, o, s);
   o.mu = read_mu(t);
   o.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
   if (t.has("density")) {
@@ -326,10 +325,7 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   } else {
     check_bounds_reach_box(t, o, s);
   }
-  if (mesh) {
-    o.solid = std::move(mesh);
-    check_sample_count(t, o, s);
-  }
+  if (o.shape == ObstacleShape::Mesh) check_sample_count(t, o, s);
   check_bodies_clear(t, o, s);
   return o;
 }
