@@ -243,6 +243,7 @@ class Runner {
       }
       for (int a = 0; a < (D == 2 ? 1 : 3); ++a) b.spin[a] = obstacles[k].spin[a];
       b.angle = obstacles[k].angle;
+      for (int a = 0; a < 4; ++a) b.quaternion[a] = obstacles[k].quaternion[a];
       bodies_.push_back(b);
     }
   }
@@ -446,7 +447,8 @@ int resume_from(const SceneConfig& scene, RunSettings set, const Checkpoint& c,
           !scene.obstacles[b.obstacle].dynamic())
         throw CheckpointError(path.string() +
                               ": a row names an obstacle that is not a body; cannot resume");
-      sim.set_body_state(b.obstacle, x, v, w, b.angle);
+      sim.set_body_state(b.obstacle, x, v, w, b.angle,
+                         {b.quaternion[0], b.quaternion[1], b.quaternion[2], b.quaternion[3]});
       ++restored;
     }
     const std::size_t expected = c.steps > 0 ? count_bodies(scene) : 0;

@@ -77,6 +77,9 @@ ConeProblem<D> buried_body_problem(BuriedBody* body) {
   Vec<D> spin = Vec<D>::Constant(dt / inertia);
   if (D == 2) spin[1] = 0.0;
   q.inv_mass.push_back(spin);
+  q.first_body_entry = v;
+  q.spin_inverse.assign(1, Mat<D>(spin.asDiagonal()));  // a ball's J is isotropic
+  q.spin_diagonal.assign(1, 1);
   q.first_body_row = q.first_contact;
   const int contacts = q.rows() - q.first_contact;
   q.contact_body.assign(contacts, v);

@@ -135,7 +135,7 @@ std::string obstacle_header(int dimension) {
 
 std::string bodies_header(int dimension) {
   return dimension == 2 ? "step,time,obstacle,x,y,vx,vy,omega,angle"
-                        : "step,time,obstacle,x,y,z,vx,vy,vz,wx,wy,wz";
+                        : "step,time,obstacle,x,y,z,vx,vy,vz,wx,wy,wz,qw,qx,qy,qz";
 }
 }  // namespace
 
@@ -184,6 +184,7 @@ std::string bodies_csv(const std::vector<BodyRow>& rows, int dimension) {
       put(r.angle);
     } else {
       for (int a = 0; a < 3; ++a) put(r.spin[a]);
+      for (int a = 0; a < 4; ++a) put(r.quaternion[a]);
     }
     fmt::format_to(std::back_inserter(out), "\n");
   }
@@ -195,7 +196,7 @@ std::vector<BodyRow> parse_bodies_until(const std::string& text, int dimension, 
   std::string line;
   if (!std::getline(in, line) || line != bodies_header(dimension))
     throw IoError("bodies.csv: bad header");
-  const int columns = dimension == 2 ? 9 : 12;
+  const int columns = dimension == 2 ? 9 : 16;
   std::vector<BodyRow> rows;
   std::vector<double> v;
   while (std::getline(in, line) && !in.eof()) {
@@ -214,6 +215,7 @@ std::vector<BodyRow> parse_bodies_until(const std::string& text, int dimension, 
       r.angle = v[8];
     } else {
       for (int a = 0; a < 3; ++a) r.spin[a] = v[9 + a];
+      for (int a = 0; a < 4; ++a) r.quaternion[a] = v[12 + a];
     }
     rows.push_back(r);
   }

@@ -73,7 +73,8 @@ struct BodyRow {
   double centre[3] = {0, 0, 0};
   double velocity[3] = {0, 0, 0};
   double spin[3] = {0, 0, 0};  // 2D: spin[0] = omega
-  double angle = 0.0;          // 2D only
+  double angle = 0.0;          // 2D only: rad, counter-clockwise
+  double quaternion[4] = {1, 0, 0, 0};  // 3D only: orientation (w, x, y, z)
 };
 
 std::string bodies_csv(const std::vector<BodyRow>& rows, int dimension);

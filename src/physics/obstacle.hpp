@@ -4,7 +4,9 @@
 // a switch, no virtual dispatch: they are evaluated per node and per particle.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -31,15 +33,68 @@ struct Obstacle {
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
   double until = 1e300;              // s: taken away from this time on (scene's obstacle[].until)
   bool gone = false;                 // taken away: no longer there at all
-  // A rigid body (a ball with a density): its state is advanced by the
-  // simulation, not by at_time. Mass in kg (kg/m in 2D), moment of inertia
-  // about its centre in kg m^2 (kg m in 2D), angular velocity in rad/s
-  // (2D: spin[0]), and in 2D the angle it has turned through (rad).
+  // A rigid body (a ball or a box with a density): its state is advanced by
+  // the simulation, not by at_time. Mass in kg (kg/m in 2D), moments of
+  // inertia about its centre along its own axes in kg m^2 (2D: inertia[0],
+  // kg m, about z), angular velocity in rad/s about world axes (2D:
+  // spin[0]), and its orientation: in 2D the angle it has turned through
+  // (rad, counter-clockwise), in 3D a unit quaternion (w, x, y, z). A box
+  // body keeps its centre in `a` (as a ball does) and its half sides in `b`:
+  // it spans a + rotation [-b, b]; `rotation` follows the orientation
+  // (set_orientation).
   bool dynamic = false;
-  double mass = 0.0, inertia = 0.0;
+  double mass = 0.0;
+  Vec<D> inertia = Vec<D>::Zero();
   Vec<D> spin = Vec<D>::Zero();
   double angle = 0.0;
+  std::array<double, 4> quaternion{1.0, 0.0, 0.0, 0.0};
+  Mat<D> rotation = Mat<D>::Identity();
 };
+
+// The rotation of a body's orientation (angle in 2D, quaternion in 3D).
+template <int D>
+inline void set_orientation(Obstacle<D>& o) {
+  if constexpr (D == 2) {
+    const double c = std::cos(o.angle), s = std::sin(o.angle);
+    o.rotation << c, -s, s, c;
+  } else {
+    const auto& q = o.quaternion;
+    o.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+  }
+}
+
+// The radius of the smallest ball about its centre that holds a body.
+template <int D>
+inline double bounding_radius(const Obstacle<D>& o) {
+  return o.shape == ObstacleShape::Box ? o.b.norm() : o.radius;
+}
+
+// A box body's corners in world coordinates (2^D of them, corner c taking
+// the upper side on axis k when bit k of c is set).
+template <int D>
+inline std::array<Vec<D>, ipow(2, D)> box_corners(const Obstacle<D>& o) {
+  std::array<Vec<D>, ipow(2, D)> out;
+  for (int c = 0; c < ipow(2, D); ++c) {
+    Vec<D> local;
+    for (int k = 0; k < D; ++k) local[k] = (c >> k & 1) ? o.b[k] : -o.b[k];
+    out[c] = o.a + o.rotation * local;
+  }
+  return out;
+}
+
+// dt times a body's inverse inertia tensor about world axes, R J^-1 R^T
+// (2D: entry (0, 0) only, about z).
+template <int D>
+inline Mat<D> spin_inverse(const Obstacle<D>& o, double dt) {
+  if constexpr (D == 2) {
+    Mat<D> m = Mat<D>::Zero();
+    m(0, 0) = dt / o.inertia[0];
+    return m;
+  } else {
+    if (o.shape != ObstacleShape::Box) return Mat<D>::Identity() * (dt / o.inertia[0]);  // a ball
+    return o.rotation * (dt * o.inertia.cwiseInverse()).asDiagonal() * o.rotation.transpose();
+  }
+}
 
 template <int D>
 Obstacle<D> make_obstacle(const ObstacleConfig& c) {
@@ -74,10 +129,35 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   for (int k = 0; k < D; ++k) o.velocity[k] = c.velocity[k];
   if (c.dynamic()) {
     constexpr double pi = 3.14159265358979323846;
-    const double r = c.radius;
     o.dynamic = true;
-    o.mass = c.density * (D == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r);
-    o.inertia = (D == 2 ? 0.5 : 0.4) * o.mass * r * r;  // disk, solid sphere
+    if (c.shape == ObstacleShape::Box) {
+      const Vec<D> size = o.b - o.a;
+      o.a = 0.5 * (o.a + o.b);  // the centre
+      o.b = 0.5 * size;         // the half sides
+      o.mass = c.density * size.prod();
+      // A uniform box: J_k = m (sum of the other sides squared) / 12; in 2D
+      // about z, m (w^2 + h^2) / 12.
+      const double sq = size.squaredNorm();
+      if constexpr (D == 2) {
+        o.inertia[0] = o.mass * sq / 12.0;
+      } else {
+        for (int k = 0; k < D; ++k) o.inertia[k] = o.mass * (sq - size[k] * size[k]) / 12.0;
+      }
+    } else {
+      const double r = c.radius;
+      o.mass = c.density * (D == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r);
+      o.inertia.setConstant((D == 2 ? 0.5 : 0.4) * o.mass * r * r);  // disk, solid sphere
+    }
+    // The initial orientation: `angle` (degrees) about `axis` (3D; z in 2D).
+    const double turn = c.angle_degrees * pi / 180.0;
+    if constexpr (D == 2) {
+      o.angle = turn;
+    } else {
+      const Eigen::Vector3d axis(c.axis[0], c.axis[1], c.axis[2]);
+      const Eigen::Quaterniond q(Eigen::AngleAxisd(turn, axis.normalized()));
+      o.quaternion = {q.w(), q.x(), q.y(), q.z()};
+    }
+    set_orientation(o);
   }
   return o;
 }
@@ -105,6 +185,28 @@ std::vector<Obstacle<D>> make_obstacles(const SceneConfig& scene, double t = 0.0
   return out;
 }
 
+// Signed distance of x to the axis-aligned box [lo, hi] and the outward
+// normal there. Outside: the distance to the box; inside: minus the distance
+// to the nearest face, whose normal is the outward one.
+template <int D>
+inline double box_distance(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x, Vec<D>* normal) {
+  const Vec<D> centre = 0.5 * (lo + hi);
+  const Vec<D> half = 0.5 * (hi - lo);
+  const Vec<D> q = (x - centre).cwiseAbs() - half;
+  const Vec<D> outside = q.cwiseMax(0.0);
+  const double out_len = outside.norm();
+  if (out_len > 0.0) {
+    for (int k = 0; k < D; ++k) (*normal)[k] = (x[k] < centre[k] ? -outside[k] : outside[k]) / out_len;
+    return out_len;
+  }
+  int axis = 0;
+  for (int k = 1; k < D; ++k)
+    if (q[k] > q[axis]) axis = k;
+  *normal = Vec<D>::Zero();
+  (*normal)[axis] = x[axis] < centre[axis] ? -1.0 : 1.0;
+  return q[axis];
+}
+
 // Signed distance of x to the obstacle (m) and the outward normal there.
 template <int D>
 inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* normal) {
@@ -130,24 +232,12 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
       return len - o.radius;
     }
     case ObstacleShape::Box: {
-      // Outside: distance to the box; inside: minus the distance to the
-      // nearest face, whose normal is the outward one.
-      const Vec<D> centre = 0.5 * (o.a + o.b);
-      const Vec<D> half = 0.5 * (o.b - o.a);
-      const Vec<D> q = (x - centre).cwiseAbs() - half;
-      const Vec<D> outside = q.cwiseMax(0.0);
-      const double out_len = outside.norm();
-      if (out_len > 0.0) {
-        for (int k = 0; k < D; ++k)
-          (*normal)[k] = (x[k] < centre[k] ? -outside[k] : outside[k]) / out_len;
-        return out_len;
-      }
-      int axis = 0;
-      for (int k = 1; k < D; ++k)
-        if (q[k] > q[axis]) axis = k;
-      *normal = Vec<D>::Zero();
-      (*normal)[axis] = x[axis] < centre[axis] ? -1.0 : 1.0;
-      return q[axis];
+      if (!o.dynamic) return box_distance<D>(o.a, o.b, x, normal);
+      // A box body: the distance in its own frame, the normal turned back.
+      const Vec<D> local = o.rotation.transpose() * (x - o.a);
+      const double s = box_distance<D>(-o.b, o.b, local, normal);
+      *normal = o.rotation * *normal;
+      return s;
     }
     case ObstacleShape::Polygon: {
       if constexpr (D == 2) {

@@ -171,17 +171,34 @@ void Simulation<D>::attach_bodies(double dt) {
   const std::int64_t nodes = grid_.node_count();
   P.velocity.resize(nodes);
   P.inv_mass.resize(nodes);
+  P.first_body_entry = nodes;
+  P.spin_inverse.clear();
+  P.spin_diagonal.clear();
   std::vector<std::int64_t> entry(obstacles_.size(), -1);
   for (std::size_t k = 0; k < obstacles_.size(); ++k) {
     const Obstacle<D>& o = obstacles_[k];
     if (!o.dynamic) continue;
     entry[k] = static_cast<std::int64_t>(P.velocity.size());
     P.velocity.push_back(o.velocity + dt * gravity_);
-    P.velocity.push_back(o.spin);
+    // The spin after the gyroscopic torque -omega x J omega (world axes),
+    // explicit; zero for balls, whose J is isotropic.
+    const Mat<D> J_inv = spin_inverse(o, dt);
+    Vec<D> spin = o.spin;
+    if constexpr (D == 3) {
+      if (o.shape == ObstacleShape::Box) {
+        const Mat<D> J = o.rotation * o.inertia.asDiagonal() * o.rotation.transpose();
+        spin -= J_inv * o.spin.cross(J * o.spin);
+      }
+    }
+    P.velocity.push_back(spin);
     P.inv_mass.push_back(Vec<D>::Constant(dt / o.mass));
-    Vec<D> spin_inverse = Vec<D>::Constant(dt / o.inertia);
-    if constexpr (D == 2) spin_inverse[1] = 0.0;  // 2D: one rotation, about z
-    P.inv_mass.push_back(spin_inverse);
+    // The spin's entry in the residual's weights: the tensor's diagonal (its
+    // full form acts in the solve, P.spin_inverse).
+    Vec<D> spin_weight = J_inv.diagonal();
+    if constexpr (D == 2) spin_weight[1] = 0.0;  // 2D: one rotation, about z
+    P.inv_mass.push_back(spin_weight);
+    P.spin_inverse.push_back(J_inv);
+    P.spin_diagonal.push_back(J_inv.isDiagonal(0.0));
   }
   const int contacts = P.rows() - P.first_contact;
   P.contact_body.assign(std::max(contacts, 0), -1);
@@ -193,12 +210,11 @@ void Simulation<D>::attach_bodies(double dt) {
     const int c = j - P.first_contact;
     const int k = obstacle_index_[c];
     P.contact_body[c] = entry[k];
-    if (wall_gap_[c] >= 0.0) {  // against a solid: the ball's point nearest it
-      const Vec<D> n = P.contact_frame[c].col(0);
-      P.contact_arm[c] = obstacles_[k].radius * n;
-      if (const int m = contact_other_[c]; m >= 0) {  // another ball: its nearest point
+    if (wall_gap_[c] >= 0.0) {  // against a solid: the arms found with the row
+      P.contact_arm[c] = contact_arm_[c];
+      if (const int m = contact_other_[c]; m >= 0) {
         P.contact_other_body[c] = entry[m];
-        P.contact_other_arm[c] = -obstacles_[m].radius * n;
+        P.contact_other_arm[c] = contact_other_arm_[c];
       }
       continue;
     }
@@ -208,7 +224,8 @@ void Simulation<D>::attach_bodies(double dt) {
 }
 
 // The solve gave each body its velocities at the end of the step; it moves
-// with them (the same semi-implicit Euler step as the grains).
+// with them (the same semi-implicit Euler step as the grains) and turns by
+// its spin times dt.
 template <int D>
 void Simulation<D>::move_bodies(double dt) {
   const ConeProblem<D>& P = problem_;
@@ -218,7 +235,20 @@ void Simulation<D>::move_bodies(double dt) {
     o.velocity = P.velocity[v];
     o.spin = P.velocity[v + 1];
     o.a += dt * o.velocity;
-    if constexpr (D == 2) o.angle += dt * o.spin[0];
+    if constexpr (D == 2) {
+      o.angle += dt * o.spin[0];
+    } else {
+      const double turn = dt * o.spin.norm();
+      if (turn > 0.0) {
+        const auto& q = o.quaternion;
+        const Eigen::Quaterniond r =
+            (Eigen::Quaterniond(Eigen::AngleAxisd(turn, o.spin.normalized())) *
+             Eigen::Quaterniond(q[0], q[1], q[2], q[3]))
+                .normalized();
+        o.quaternion = {r.w(), r.x(), r.y(), r.z()};
+      }
+    }
+    set_orientation(o);
     v += 2;
   }
 }
@@ -322,7 +352,7 @@ double Simulation<D>::adaptive_dt(double remaining) const {
   // over the grains they meet.
   double v = std::max(max_speed(), open_spout_speed(scene_, time_));
   for (const Obstacle<D>& o : obstacles_)
-    if (o.dynamic) v = std::max(v, o.velocity.norm() + o.spin.norm() * o.radius);
+    if (o.dynamic) v = std::max(v, o.velocity.norm() + o.spin.norm() * bounding_radius(o));
   const double g = gravity_.norm();
   double dt = remaining;
   if (g > 0.0) {

@@ -90,14 +90,17 @@ class Simulation {
   }
   // Sets rigid body k's state (the [[obstacle]] of index k, which must have
   // a density): a resumed run takes it from bodies.csv.
+  // `angle` (2D, rad) or `quaternion` (3D, w x y z) is its orientation.
   void set_body_state(std::size_t k, const Vec<D>& centre, const Vec<D>& velocity,
-                      const Vec<D>& spin, double angle) {
+                      const Vec<D>& spin, double angle, const std::array<double, 4>& quaternion) {
     Obstacle<D>& o = obstacles_.at(k);
     if (!o.dynamic) throw std::invalid_argument("obstacle " + std::to_string(k) + " is not a body");
     o.a = centre;
     o.velocity = velocity;
     o.spin = spin;
     o.angle = angle;
+    o.quaternion = quaternion;
+    set_orientation(o);
   }
   // First stress row of the obstacles (rows before it are the sand's nodes).
   int first_obstacle_row() const { return obstacle_row_start_; }
@@ -200,6 +203,9 @@ class Simulation {
   // ball's [[obstacle]] index, else -1), or a row with the sand (gap -1).
   std::vector<double> wall_gap_, wall_mu_;
   std::vector<int> contact_other_;
+  // Rows of a body against a solid: the lever arms of the touching points
+  // from the body's centre and from the other body's (m).
+  std::vector<Vec<D>> contact_arm_, contact_other_arm_;
   std::vector<double> row_solid_;        // per sand row: solid fraction of V_j
 
   ConeProblem<D> problem_;

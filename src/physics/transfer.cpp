@@ -96,6 +96,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
     double mu = 0.0;    // and the friction there
     int other = -1;     // the solid, when it is another body
     Vec<D> surface_velocity = Vec<D>::Zero();  // the solid's, when it is a moving obstacle
+    Vec<D> arm = Vec<D>::Zero();        // a body against a solid: its point from its centre
+    Vec<D> other_arm = Vec<D>::Zero();  // and the other body's, from that one's centre
   };
   std::vector<std::vector<Contact>> obstacle_by_colour;
   // Rigid bodies' rows come last, in one group that the solver updates in
@@ -117,56 +119,102 @@ void Simulation<D>::transfer_to_grid(double dt) {
         (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[run % kColours])
             .push_back({node, n, which});
       }
-    // A rigid ball within a cell of one of the box's walls gets a row against
-    // it: on the ghost node just outside the wall nearest the ball, whose
-    // velocity and inverse mass are zero, so that the row sees the ball
-    // alone. Its normal points from the ball to the wall; the row lets the
-    // ball close the gap within the step (contact_velocity, below), and
-    // stick walls get the ball's friction, slip walls none. Free faces and
-    // openings hold nothing back.
+    // A rigid body meets walls and other solids by points: a ball by its
+    // centre, reaching its radius further, a box by its corners (docs/
+    // scenes.md, "Rigid bodies"). Such a point within a cell of one of the
+    // box's walls gets a row against it: on the ghost node just outside the
+    // wall nearest the point, whose velocity and inverse mass are zero, so
+    // that the row sees the body alone. Its normal points from the body to
+    // the wall; the row lets the body close the gap within the step
+    // (contact_velocity, below), and stick walls get the body's friction,
+    // slip walls none. Free faces and openings hold nothing back.
     const auto& cells = grid_.cells();
+    const std::int64_t count = static_cast<std::int64_t>(obstacles.size());
+    constexpr int NC = ipow(2, D);
+    struct Touch {
+      Vec<D> at;
+      double reach;
+    };
+    const auto touch_points = [](const Obstacle<D>& o, std::array<Touch, NC>& out) {
+      if (o.shape != ObstacleShape::Box) {
+        out[0] = {o.a, o.radius};
+        return 1;
+      }
+      const auto corners = box_corners(o);
+      for (int c = 0; c < NC; ++c) out[c] = {corners[c], 0.0};
+      return NC;
+    };
+    std::array<Touch, NC> points;
+    // Rows of body b's points against solid s (the smaller friction of the
+    // two, and the solid's motion: a moving plane drags the body along, as
+    // it does the sand), on ghost nodes beyond the xmin face (zero velocity
+    // and inverse mass, like the walls'), one per pair and point so that
+    // each keeps its own warm start (past the face's node count they share
+    // one; only their warm starts mix).
+    const auto against_solid = [&](std::size_t b, std::size_t s) {
+      const Obstacle<D>& o = obstacles[b];
+      const Obstacle<D>& q = obstacles[s];
+      const int n_points = touch_points(o, points);
+      for (int t = 0; t < n_points; ++t) {
+        Vec<D> out;  // from the solid towards the point
+        const double distance = signed_distance(q, points[t].at, &out);
+        const double gap = distance - points[t].reach;
+        if (gap >= h) continue;
+        const Vec<D> n = -out;
+        const std::int64_t key =
+            static_cast<std::int64_t>(b) * count + static_cast<std::int64_t>(s) + count * count * t;
+        std::array<int, D> ghost{};
+        ghost[0] = -1;
+        ghost[1] = static_cast<int>(key % (cells[1] + 1));
+        if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
+        Contact c{grid_.node_index(ghost), n, static_cast<int>(b), std::max(gap, 0.0),
+                  std::min(o.mu, q.mu), q.dynamic ? static_cast<int>(s) : -1,
+                  q.dynamic ? Vec<D>::Zero() : q.velocity};
+        c.arm = (points[t].at - o.a) + points[t].reach * n;
+        if (q.dynamic)  // the solid's point nearest ours, from its centre
+          c.other_arm = q.shape == ObstacleShape::Box ? Vec<D>(points[t].at - distance * out - q.a)
+                                                      : Vec<D>(-q.radius * n);
+        body_contacts.push_back(c);
+      }
+    };
     for (std::size_t k = 0; k < obstacles.size(); ++k) {
       const Obstacle<D>& o = obstacles[k];
       if (!o.dynamic) continue;
-      for (int a = 0; a < D; ++a)
-        for (int side = 0; side < 2; ++side) {
-          const double gap = side == 0 ? o.a[a] - o.radius : cells[a] * h - o.a[a] - o.radius;
-          if (gap >= h) continue;
-          Vec<D> n = Vec<D>::Zero();
-          n[a] = side == 0 ? -1.0 : 1.0;
-          const Vec<D> touch = o.a + o.radius * n;
-          if (leaves_through_free_face(a, side, touch)) continue;
-          std::array<int, D> ghost;
-          for (int b = 0; b < D; ++b)
-            ghost[b] = std::clamp(static_cast<int>(std::lround(o.a[b] / h)), 0, cells[b]);
-          ghost[a] = side == 0 ? -1 : cells[a] + 1;
-          const bool stick = scene_.boundary.faces[2 * a + side] == BoundaryType::Stick;
-          body_contacts.push_back({grid_.node_index(ghost), n, static_cast<int>(k),
-                                   std::max(gap, 0.0), stick ? o.mu : 0.0});
-        }
-      // Against the other obstacles and the other balls (each pair once), in
-      // the same way: the normal from the ball's centre to the other solid's
-      // nearest point, the smaller friction of the two, and the solid's
-      // motion (a moving plane drags the ball along, as it does the sand).
-      // The row's node is a ghost node beyond the xmin face (zero velocity
-      // and inverse mass, like the walls'), one per pair so that each keeps
-      // its own warm start (pairs past the face's node count share one; only
-      // their warm starts mix).
+      const int n_points = touch_points(o, points);
+      for (int t = 0; t < n_points; ++t)
+        for (int a = 0; a < D; ++a)
+          for (int side = 0; side < 2; ++side) {
+            const Vec<D>& x = points[t].at;
+            const double reach = points[t].reach;
+            const double gap = side == 0 ? x[a] - reach : cells[a] * h - x[a] - reach;
+            if (gap >= h) continue;
+            Vec<D> n = Vec<D>::Zero();
+            n[a] = side == 0 ? -1.0 : 1.0;
+            const Vec<D> touch = x + reach * n;
+            if (leaves_through_free_face(a, side, touch)) continue;
+            std::array<int, D> ghost;
+            for (int b = 0; b < D; ++b)
+              ghost[b] = std::clamp(static_cast<int>(std::lround(x[b] / h)), 0, cells[b]);
+            ghost[a] = side == 0 ? -1 : cells[a] + 1;
+            const bool stick = scene_.boundary.faces[2 * a + side] == BoundaryType::Stick;
+            Contact c{grid_.node_index(ghost), n, static_cast<int>(k), std::max(gap, 0.0),
+                      stick ? o.mu : 0.0};
+            c.arm = (x - o.a) + reach * n;
+            body_contacts.push_back(c);
+          }
+      // Against the other obstacles and bodies, each pair of bodies once: a
+      // ball's centre against the other's distance, a box's corners against
+      // a fixed solid's or another box's, and each box's against the other's.
       for (std::size_t m = 0; m < obstacles.size(); ++m) {
         const Obstacle<D>& q = obstacles[m];
         if (m == k || (q.dynamic && m < k)) continue;
-        Vec<D> out;  // from the other solid towards the ball's centre
-        const double gap = signed_distance(q, o.a, &out) - o.radius;
-        if (gap >= h) continue;
-        const std::int64_t pair = static_cast<std::int64_t>(k * obstacles.size() + m);
-        std::array<int, D> ghost{};
-        ghost[0] = -1;
-        ghost[1] = static_cast<int>(pair % (cells[1] + 1));
-        if constexpr (D == 3) ghost[2] = static_cast<int>((pair / (cells[1] + 1)) % (cells[2] + 1));
-        body_contacts.push_back({grid_.node_index(ghost), -out, static_cast<int>(k),
-                                 std::max(gap, 0.0), std::min(o.mu, q.mu),
-                                 q.dynamic ? static_cast<int>(m) : -1,
-                                 q.dynamic ? Vec<D>::Zero() : q.velocity});
+        const bool box = o.shape == ObstacleShape::Box;
+        if (box && q.dynamic && q.shape != ObstacleShape::Box) {
+          against_solid(m, k);  // the ball against this box
+          continue;
+        }
+        against_solid(k, m);
+        if (box && q.dynamic) against_solid(m, k);
       }
     }
     for (const auto& list : obstacle_by_colour) {
@@ -197,8 +245,12 @@ void Simulation<D>::transfer_to_grid(double dt) {
   wall_gap_.clear();
   wall_mu_.clear();
   contact_other_.clear();
+  contact_arm_.clear();
+  contact_other_arm_.clear();
   for (const auto& list : obstacle_by_colour)
     for (const Contact& c : list) {
+      contact_arm_.push_back(c.arm);
+      contact_other_arm_.push_back(c.other_arm);
       P.node[r] = c.node;
       P.coupling[r].setZero();
       obstacle_index_.push_back(c.which);

@@ -184,10 +184,14 @@ struct ObstacleConfig {
   // s: a fixed obstacle is taken away for the steps that start at or after
   // this time (a gate lifted, a shutter opened); infinity = never.
   double until = std::numeric_limits<double>::infinity();
-  // kg/m^3: 0 for a fixed (or kinematic) obstacle; > 0 makes a disk or
-  // sphere a rigid body that the sand pushes (two-way coupling, METHOD.md
-  // section 3), starting at `velocity` and falling under gravity.
+  // kg/m^3: 0 for a fixed (or kinematic) obstacle; > 0 makes a disk,
+  // sphere or box a rigid body that the sand pushes (two-way coupling,
+  // METHOD.md section 3), starting at `velocity` and falling under gravity.
   double density = 0.0;
+  // A rigid body's initial orientation: turned by angle_degrees about its
+  // centre, counter-clockwise about `axis` (3D, a unit vector; z in 2D).
+  double angle_degrees = 0.0;
+  Vec3d axis{0, 0, 1};
   bool dynamic() const { return density > 0.0; }
 };
 

@@ -151,6 +151,28 @@ void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
                               obstacle_shape_name(o.shape, d)));
 }
 
+// A rigid body's initial orientation: `angle` (degrees, counter-clockwise
+// about its centre) and in 3D `axis` (normalised when read; z by default).
+void read_orientation(TableReader& t, ObstacleConfig& o, int d) {
+  for (const char* key : {"angle", "axis"})
+    if (t.has(key) && !o.dynamic())
+      t.fail_at(t.node(key), key,
+                "only a rigid body has an orientation; allowed: angle (and axis in 3D) on an "
+                "obstacle with a density");
+  o.angle_degrees = t.number("angle", 0.0, Range{-360.0, 360.0, false, false});
+  if (!t.has("axis")) return;
+  if (d == 2)
+    t.fail_at(t.node("axis"), "axis",
+              "2D bodies turn about z; allowed: axis in 3D scenes only");
+  Vec3d a = t.vector("axis", 3, std::nullopt, Range());
+  const double len = length(a);
+  if (!(len > 0.0) || !std::isfinite(len))
+    t.fail_at(t.node("axis"), "axis", "zero or too long; allowed: a nonzero vector of finite numbers");
+  if (std::abs(len - 1.0) > 1e-14)
+    for (double& x : a) x /= len;
+  o.axis = a;
+}
+
 void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
                    const SceneConfig& s) {
   const int d = s.dimension;
@@ -246,18 +268,57 @@ void sample_mesh_distances(SceneConfig& s) {
   }
 }
 
-// How far a rigid ball `b` reaches into the solid `o` (m; <= 0 when clear
-// of it or touching it).
+// Signed distance of x to the solid `o`: exact for meshes, whose distance
+// is not sampled yet.
+template <int D>
+double config_distance(const ObstacleConfig& o, const Vec<D>& x) {
+  if constexpr (D == 3)
+    if (o.shape == ObstacleShape::Mesh) {
+      const Point3 c{x[0], x[1], x[2]};
+      const double d = o.solid->distance(c);
+      return o.solid->contains(c) ? -d : d;
+    }
+  Vec<D> n;
+  return signed_distance(make_obstacle<D>(o), x, &n);
+}
+
+// The points by which a ball or box meets other solids (docs/scenes.md,
+// "Rigid bodies"): a ball's centre, reaching `reach` = its radius further,
+// or a box's corners (reach 0). Other shapes have none.
+template <int D>
+std::vector<Vec<D>> contact_points(const ObstacleConfig& c, double* reach) {
+  const Obstacle<D> o = make_obstacle<D>(c);
+  *reach = 0.0;
+  if (c.shape == ObstacleShape::Ball) {
+    *reach = o.radius;
+    return {o.a};
+  }
+  if (c.shape != ObstacleShape::Box) return {};
+  const auto corners = box_corners(o);
+  return {corners.begin(), corners.end()};
+}
+
+// How far the rigid body `b` and the solid `o` reach into each other (m;
+// <= 0 when clear or touching): over the points each meets the other by.
 template <int D>
 double overlap(const ObstacleConfig& b, const ObstacleConfig& o) {
-  const Obstacle<D> ball = make_obstacle<D>(b);
-  if (o.shape == ObstacleShape::Mesh) {  // not sampled yet: the exact distance
-    const Point3 c{b.center[0], b.center[1], b.center[2]};
-    const double d = o.solid->distance(c);
-    return ball.radius - (o.solid->contains(c) ? -d : d);
+  double depth = -kInf, reach = 0.0;
+  for (const Vec<D>& x : contact_points<D>(b, &reach))
+    depth = std::max(depth, reach - config_distance<D>(o, x));
+  for (const Vec<D>& x : contact_points<D>(o, &reach))
+    depth = std::max(depth, reach - config_distance<D>(b, x));
+  return depth;
+}
+
+// The extent of a rigid body on axis a.
+template <int D>
+std::pair<double, double> body_extent(const ObstacleConfig& c, int a) {
+  double reach = 0.0, lo = kInf, hi = -kInf;
+  for (const Vec<D>& x : contact_points<D>(c, &reach)) {
+    lo = std::min(lo, x[a] - reach);
+    hi = std::max(hi, x[a] + reach);
   }
-  Vec<D> n;
-  return ball.radius - signed_distance(make_obstacle<D>(o), ball.a, &n);
+  return {lo, hi};
 }
 
 // A rigid body must start inside the box and clear of every solid read
@@ -268,10 +329,11 @@ void check_bodies_clear(TableReader& t, const ObstacleConfig& o, const SceneConf
   const int d = s.dimension;
   if (o.dynamic())
     for (int a = 0; a < d; ++a) {
-      const double lo = o.center[a] - o.radius, hi = o.center[a] + o.radius;
+      const auto [lo, hi] = d == 2 ? body_extent<2>(o, a) : body_extent<3>(o, a);
       const double eps = 1e-12 * s.size[a];
       if (lo >= -eps && hi <= s.size[a] + eps) continue;
-      t.fail_at(t.node("center"), "center",
+      const char* key = o.shape == ObstacleShape::Box ? "min" : "center";
+      t.fail_at(t.node(key), key,
                 fmt::format("the rigid body spans [{}, {}] on {}, not inside the box [0, {}] "
                             "(grid.size); allowed: a body that starts inside the box",
                             lo, hi, axis_name(a), s.size[a]));
@@ -306,12 +368,14 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   o.mu = read_mu(t);
   o.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
   if (t.has("density")) {
-    if (o.shape != ObstacleShape::Ball)
+    if (o.shape != ObstacleShape::Ball && o.shape != ObstacleShape::Box)
       t.fail_at(t.node("density"), "density",
-                fmt::format("a {} cannot be a rigid body yet; allowed: density on a {} only",
+                fmt::format("a {} cannot be a rigid body yet; allowed: density on a {} or a box "
+                            "only",
                             obstacle_shape_name(o.shape, d), d == 2 ? "disk" : "sphere"));
     o.density = t.number("density", std::nullopt, kDensityRange);
   }
+  read_orientation(t, o, d);
   if (t.has("until")) {
     if (o.dynamic())
       t.fail_at(t.node("until"), "until",

@@ -129,6 +129,10 @@ std::string obstacle_lines(const ObstacleConfig& o, int d) {
   }
   out += fmt::format("mu = {}\nvelocity = {}\n", num(o.mu), vecf(o.velocity, d));
   if (o.dynamic()) out += fmt::format("density = {}\n", num(o.density));
+  if (o.angle_degrees != 0.0) {
+    out += fmt::format("angle = {}\n", num(o.angle_degrees));
+    if (d == 3) out += fmt::format("axis = {}\n", vecf(o.axis, 3));
+  }
   if (std::isfinite(o.until)) out += fmt::format("until = {}\n", num(o.until));
   return out;
 }

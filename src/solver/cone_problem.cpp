@@ -110,14 +110,20 @@ inline Vec<D> body_point_velocity(const ConeProblem<D>& p, std::int64_t v, const
 
 // The body's reaction to force f (the force its contact stress puts on the
 // sand node at `arm`): V -= M^{-1} f, omega -= J^{-1} (arm x f), with the
-// inverse masses already multiplied by dt (cone_problem.hpp).
+// inverse masses already multiplied by dt (cone_problem.hpp); per component
+// where J is diagonal (balls).
 template <int D>
 inline void push_body(ConeProblem<D>& p, std::int64_t v, const Vec<D>& arm, const Vec<D>& f) {
   p.velocity[v] -= p.inv_mass[v].cwiseProduct(f);
   if constexpr (D == 2) {
     p.velocity[v + 1][0] -= p.inv_mass[v + 1][0] * (arm[0] * f[1] - arm[1] * f[0]);
   } else {
-    p.velocity[v + 1] -= p.inv_mass[v + 1].cwiseProduct(arm.cross(f));
+    const std::int64_t b = (v - p.first_body_entry) / 2;
+    if (p.spin_diagonal[b]) {
+      p.velocity[v + 1] -= p.inv_mass[v + 1].cwiseProduct(arm.cross(f));
+    } else {
+      p.velocity[v + 1] -= p.spin_inverse[b] * arm.cross(f);
+    }
   }
 }
 
@@ -315,7 +321,11 @@ void assemble_delassus(ConeProblem<D>& p) {
       } else {
         Mat<D> A;
         A << 0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0;  // [a]x
-        K += A.transpose() * p.inv_mass[v + 1].asDiagonal() * A;
+        if (p.spin_diagonal[(v - p.first_body_entry) / 2]) {
+          K += A.transpose() * p.inv_mass[v + 1].asDiagonal() * A;
+        } else {
+          K += A.transpose() * p.spin_inverse[(v - p.first_body_entry) / 2] * A;
+        }
       }
       Wc += w * F.transpose() * K * F;
     };

@@ -89,12 +89,15 @@ struct ConeProblem {
 
   // Rigid bodies (METHOD.md section 3, two-way coupling). A body's velocity
   // unknowns are two entries of `velocity` past the grid's nodes: at index
-  // v its linear velocity V, at v + 1 its angular velocity (2D: (omega, 0);
-  // 3D: omega), with inverse "masses" dt / m (per component) and dt / J_k,
-  // J_k the principal moments of inertia about world axes (bodies whose
-  // inertia tensor is diagonal in world axes: disks, spheres; 0 on the
-  // unused component in 2D). Being ordinary velocity entries, they enter the
-  // residual's kinetic-energy norm and the Anderson mixing unchanged.
+  // v its linear velocity V, at v + 1 its angular velocity about world axes
+  // (2D: (omega, 0); 3D: omega). The linear entry's inverse mass is dt / m
+  // per component; the angular one acts through dt J^-1, J the inertia
+  // tensor about world axes (spin_inverse, one per body from
+  // first_body_entry on, two entries per body; in 2D its (0, 0) entry, about
+  // z), and its inv_mass entry holds that tensor's diagonal (0 on the unused
+  // component in 2D), the weights of the residual's norm. Being ordinary
+  // velocity entries, they enter the residual and the Anderson mixing
+  // unchanged.
   // Contact rows [first_body_row, rows()) touch a body: contact_body gives
   // the index v of their body's entries, contact_arm the lever arm x_node -
   // centre (m). Their relative velocity is u_node - (V + omega x arm), and
@@ -109,6 +112,9 @@ struct ConeProblem {
   // relative velocity u_node + (V' + omega' x arm') - (V + omega x arm); the
   // second body takes the force the row puts on the node.
   int first_body_row = std::numeric_limits<int>::max();  // none unless set
+  std::int64_t first_body_entry = std::numeric_limits<std::int64_t>::max();
+  std::vector<Mat<D>> spin_inverse;  // per body: dt J^-1 about world axes
+  std::vector<char> spin_diagonal;   // per body: spin_inverse is diagonal (inv_mass holds it)
   std::vector<std::int64_t> contact_body;  // per contact row: the body's velocity index, or -1
   std::vector<Vec<D>> contact_arm;         // per contact row: node position - body centre, m
   std::vector<std::int64_t> contact_other_body;  // per contact row: a second body, or -1
