@@ -3,6 +3,8 @@
 
 #include <toml++/toml.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -432,7 +434,7 @@ void draw_legend(Canvas& canvas, const Layout& l, const Camera::Rect& box, const
 
 // The obstacles as at time t: the rigid bodies moved to their track's last
 // row at or before t (their scene position before the first row).
-std::vector<ObstacleConfig> obstacles_at_frame(const RenderOptions& opt, double t) {
+std::vector<ObstacleConfig> obstacles_at_frame(const RenderOptions& opt, double t, int dimension) {
   std::vector<ObstacleConfig> out = opt.obstacles;
   const double until = t + 1e-9 * std::max(1.0, std::abs(t));
   for (const BodyRow& b : opt.bodies) {
@@ -440,6 +442,26 @@ std::vector<ObstacleConfig> obstacles_at_frame(const RenderOptions& opt, double 
     if (b.obstacle < 0 || static_cast<std::size_t>(b.obstacle) >= out.size()) continue;
     ObstacleConfig& o = out[b.obstacle];
     if (!o.dynamic()) continue;
+    if (o.shape == ObstacleShape::Box) {
+      const ObstacleConfig& start = opt.obstacles[b.obstacle];
+      for (int a = 0; a < 3; ++a) {
+        const double half = 0.5 * (start.max[a] - start.min[a]);
+        o.min[a] = b.centre[a] - half;
+        o.max[a] = b.centre[a] + half;
+      }
+      // The orientation as an angle about an axis (make_obstacle's form).
+      constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+      if (dimension == 2) {
+        o.angle_degrees = b.angle * kDegrees;
+      } else {
+        const Eigen::AngleAxisd turn(
+            Eigen::Quaterniond(b.quaternion[0], b.quaternion[1], b.quaternion[2], b.quaternion[3])
+                .normalized());
+        o.angle_degrees = turn.angle() * kDegrees;
+        for (int a = 0; a < 3; ++a) o.axis[a] = turn.axis()[a];
+      }
+      continue;
+    }
     for (int a = 0; a < 3; ++a) o.center[a] = b.centre[a];
   }
   return out;
@@ -463,7 +485,7 @@ Box cut_box(const Box& box, View view) {
 
 Canvas render_frame(const ParticleFrame& f, const Box& box, const Range& range,
                     const RenderOptions& opt) {
-  const std::vector<ObstacleConfig> obstacles = obstacles_at_frame(opt, f.time);
+  const std::vector<ObstacleConfig> obstacles = obstacles_at_frame(opt, f.time, f.dimension);
   if (f.dimension != box.dimension) throw IoError("the frame and the box differ in dimension");
   check_attribute(f, opt.color);
   if (f.volume.size() != f.count) throw IoError("the frame has no particle volumes");
