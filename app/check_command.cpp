@@ -67,6 +67,10 @@ void print_obstacles(const SceneConfig& s) {
         break;
       case ObstacleShape::Box:
         where = fmt::format("from {} to {}", point(o.min, d), point(o.max, d));
+        if (o.angle_degrees != 0.0)
+          where += d == 2 ? fmt::format(" turned {:.6g} degrees", o.angle_degrees)
+                          : fmt::format(" turned {:.6g} degrees about {}", o.angle_degrees,
+                                        point(o.axis, 3));
         break;
       case ObstacleShape::Ball:
         where = fmt::format("centre {}, radius {:.6g} m", point(o.center, d), o.radius);

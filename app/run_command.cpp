@@ -47,9 +47,10 @@ void on_signal(int) { g_interrupted = 1; }
 
 // Files a run writes at the top of its folder: their presence means the
 // folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv",  "obstacles.csv",   "bodies.csv",
-                                 "series.pvd", "grid_series.pvd", "scene.toml",
-                                 "run.json",   "checkpoint.bin",  "obstacles.obj"};
+const char* const kRunFiles[] = {"stats.csv",       "obstacles.csv",     "bodies.csv",
+                                 "series.pvd",      "grid_series.pvd",   "bodies_series.pvd",
+                                 "scene.toml",      "run.json",          "checkpoint.bin",
+                                 "obstacles.obj"};
 
 std::size_t count_bodies(const SceneConfig& scene) {
   std::size_t n = 0;
@@ -74,6 +75,7 @@ std::string frame_name(int frame, const char* ext) {
   return fmt::format("frames/particles_{:05d}.{}", frame, ext);
 }
 std::string grid_name(int frame) { return fmt::format("frames/grid_{:05d}.vti", frame); }
+std::string bodies_name(int frame) { return fmt::format("frames/bodies_{:05d}.vtp", frame); }
 
 // What a Runner needs besides the scene and the simulation.
 struct RunSettings {
@@ -145,8 +147,11 @@ class Runner {
     bodies_ = std::move(bodies);
     frame_times_ = c.frame_times;
     if (writes("vtp"))
-      for (std::size_t f = 0; f < frame_times_.size(); ++f)
+      for (std::size_t f = 0; f < frame_times_.size(); ++f) {
         series_.push_back({frame_times_[f], frame_name(static_cast<int>(f), "vtp")});
+        if (has_bodies(scene_))
+          bodies_series_.push_back({frame_times_[f], bodies_name(static_cast<int>(f))});
+      }
     if (set_.grid)
       for (std::size_t f = 0; f < frame_times_.size(); ++f)
         grid_series_.push_back({frame_times_[f], grid_name(static_cast<int>(f))});
@@ -268,6 +273,7 @@ class Runner {
       write_file_atomic(base + "vtp", format_vtp(frame, compression()));
       series_.push_back({frame.time, frame_name(f, "vtp")});
       write_file_atomic((set_.dir / "series.pvd").string(), format_pvd(series_));
+      if (has_bodies(scene_)) write_bodies(f, frame.time);
     }
     if (writes("csv")) write_file_atomic(base + "csv", format_particle_csv(frame));
     if (writes("ply")) write_file_atomic(base + "ply", format_ply(frame));
@@ -281,6 +287,23 @@ class Runner {
 
   VtkCompression compression() const {
     return set_.compress ? VtkCompression::Zlib : VtkCompression::None;
+  }
+
+  // The rigid bodies' surfaces where they are (frames/bodies_NNNNN.vtp, a
+  // series of its own for ParaView).
+  void write_bodies(int f, double time) {
+    std::vector<ObstacleConfig> posed = scene_.obstacles;
+    const auto& bodies = sim_.obstacles();
+    for (std::size_t k = 0; k < posed.size(); ++k) {
+      if (!bodies[k].dynamic) continue;
+      double centre[3] = {0, 0, 0};
+      for (int a = 0; a < D; ++a) centre[a] = bodies[k].a[a];
+      posed[k] = posed_body(scene_.obstacles[k], centre, bodies[k].angle,
+                            bodies[k].quaternion.data(), D);
+    }
+    write_file_atomic((set_.dir / bodies_name(f)).string(), format_bodies_vtp(posed, scene_));
+    bodies_series_.push_back({time, bodies_name(f)});
+    write_file_atomic((set_.dir / "bodies_series.pvd").string(), format_pvd(bodies_series_));
   }
 
   void write_grid(int f) {
@@ -336,7 +359,7 @@ class Runner {
   StatsTable stats_;
   std::vector<ObstacleForceRow> forces_;
   std::vector<BodyRow> bodies_;
-  std::vector<SeriesEntry> series_, grid_series_;
+  std::vector<SeriesEntry> series_, grid_series_, bodies_series_;
   std::vector<double> frame_times_;
   RunRecord record_;
 };

@@ -165,6 +165,40 @@ def check_run(out, compressed):
         check_grid(os.path.join(out, vti), time, grain_volume, k == 0)
 
 
+def check_bodies(sablier, scenes, work, scene, dimension):
+    """The rigid bodies' frames (frames/bodies_NNNNN.vtp, bodies_series.pvd):
+    VTK reads them, a box is its 4 (2D, one closed line) or 8 corners (3D,
+    six polygons), and their mean is the centre bodies.csv gives for that
+    frame's time."""
+    out = os.path.join(work, scene)
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [sablier, "run", os.path.join(scenes, scene + ".toml"), "--out", out,
+           "--set", "time.frames=2", "--threads", "1", "--quiet"]
+    result = subprocess.run(cmd, capture_output=True, text=True)
+    check(result.returncode == 0, f"{' '.join(cmd)} exited {result.returncode}:\n{result.stderr}")
+    with open(os.path.join(out, "bodies.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    entries = series(os.path.join(out, "bodies_series.pvd"))
+    check(len(entries) == 3, f"{out}: bodies series of {len(entries)} frames")
+    axes = "xyz"[:dimension]
+    for k, (time, name) in enumerate(entries):
+        poly = read(vtkXMLPolyDataReader, os.path.join(out, name))
+        n = poly.GetNumberOfPoints()
+        cells = poly.GetNumberOfLines() if dimension == 2 else poly.GetNumberOfPolys()
+        check(n == 2 ** dimension and cells == (1 if dimension == 2 else 6),
+              f"{name}: {n} points, {cells} cells")
+        index = poly.GetCellData().GetArray("obstacle")
+        check(index is not None and index.GetValue(0) == 0, f"{name}: obstacle index")
+        mean = [sum(poly.GetPoint(p)[a] for p in range(n)) / n for a in range(dimension)]
+        if k == 0:
+            continue  # the scene's start, before the first row
+        row = [r for r in rows if abs(float(r["time"]) - time) <= 1e-12][-1]
+        centre = [float(row[a]) for a in axes]
+        check(all(abs(m - c) <= 1e-12 for m, c in zip(mean, centre)),
+              f"{name}: corners centred at {mean}, bodies.csv says {centre}")
+    shutil.rmtree(out)
+
+
 def main():
     if len(sys.argv) != 4:
         sys.exit(__doc__)
@@ -174,7 +208,9 @@ def main():
         run(sablier, scenes, out, extra)
         check_run(out, extra == ["--compress"])
         shutil.rmtree(out)
-    print("ok: VTK read the particle and grid frames and series, plain and compressed")
+    check_bodies(sablier, scenes, work, "crate2d", 2)
+    check_bodies(sablier, scenes, work, "crate3d", 3)
+    print("ok: VTK read the particle, grid and body frames and series, plain and compressed")
 
 
 if __name__ == "__main__":

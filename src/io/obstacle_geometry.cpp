@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "core/mesh.hpp"
 
 namespace sablier {
@@ -164,6 +166,20 @@ Shape shape_of(const ObstacleConfig& o, const SceneConfig& s) {
       }
       break;
   }
+  if (o.dynamic() && o.angle_degrees != 0.0) {
+    // A body turned about its centre by `angle` about `axis` (z in 2D).
+    const Eigen::Vector3d axis =
+        d == 2 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(o.axis[0], o.axis[1], o.axis[2]);
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(o.angle_degrees * kPi / 180.0, axis.normalized()).toRotationMatrix();
+    Eigen::Vector3d c(0.0, 0.0, 0.0);
+    for (int a = 0; a < d; ++a)
+      c[a] = o.shape == ObstacleShape::Box ? 0.5 * (o.min[a] + o.max[a]) : o.center[a];
+    for (P3& p : g.v) {
+      const Eigen::Vector3d x = c + R * (Eigen::Vector3d(p[0], p[1], p[2]) - c);
+      p = {x[0], x[1], d == 2 ? 0.0 : x[2]};
+    }
+  }
   return g;
 }
 
@@ -191,6 +207,75 @@ std::string format_obstacles_obj(const SceneConfig& scene) {
   return "# Sablier: the scene's fixed obstacles, in metres (one object per [[obstacle]]\n"
          "# block, named by its index; rigid bodies are in bodies.csv)\n" +
          out;
+}
+
+ObstacleConfig posed_body(const ObstacleConfig& start, const double centre[3], double angle,
+                          const double quaternion[4], int dimension) {
+  ObstacleConfig o = start;
+  constexpr double kDegrees = 180.0 / kPi;
+  if (o.shape == ObstacleShape::Box) {
+    for (int a = 0; a < 3; ++a) {
+      const double half = 0.5 * (start.max[a] - start.min[a]);
+      o.min[a] = centre[a] - half;
+      o.max[a] = centre[a] + half;
+    }
+  } else {
+    for (int a = 0; a < 3; ++a) o.center[a] = centre[a];
+  }
+  if (dimension == 2) {
+    o.angle_degrees = angle * kDegrees;
+  } else {
+    const Eigen::AngleAxisd turn(
+        Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3]).normalized());
+    o.angle_degrees = turn.angle() * kDegrees;
+    for (int a = 0; a < 3; ++a) o.axis[a] = turn.axis()[a];
+  }
+  return o;
+}
+
+std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles, const SceneConfig& scene) {
+  const int d = scene.dimension;
+  std::vector<P3> points;
+  std::vector<std::vector<int>> cells;  // point indices over the whole file
+  std::vector<int> owner;
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    if (!obstacles[k].dynamic()) continue;
+    const Shape g = shape_of(obstacles[k], scene);
+    const int base = static_cast<int>(points.size());
+    points.insert(points.end(), g.v.begin(), g.v.end());
+    for (const std::vector<int>& f : g.faces) {
+      std::vector<int> cell;
+      for (int i : f) cell.push_back(base + i);
+      if (d == 2) cell.push_back(base + f.front());  // a closed outline
+      cells.push_back(std::move(cell));
+      owner.push_back(static_cast<int>(k));
+    }
+  }
+  fmt::memory_buffer out;
+  const auto put = [&](auto&&... args) { fmt::format_to(std::back_inserter(out), args...); };
+  const char* kind = d == 2 ? "Lines" : "Polys";
+  put("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n");
+  put("<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+      "NumberOfStrips=\"0\" NumberOfPolys=\"{}\">\n",
+      points.size(), d == 2 ? cells.size() : 0, d == 2 ? 0 : cells.size());
+  put("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+  for (const P3& p : points) put("{:.17g} {:.17g} {:.17g}\n", p[0], p[1], p[2]);
+  put("</DataArray>\n</Points>\n<CellData Scalars=\"obstacle\">\n"
+      "<DataArray type=\"Int32\" Name=\"obstacle\" format=\"ascii\">\n");
+  for (int k : owner) put("{}\n", k);
+  put("</DataArray>\n</CellData>\n<{}>\n"
+      "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n",
+      kind);
+  for (const auto& cell : cells) {
+    for (int i : cell) put("{} ", i);
+    put("\n");
+  }
+  put("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+  std::size_t end = 0;
+  for (const auto& cell : cells) put("{}\n", end += cell.size());
+  put("</DataArray>\n</{}>\n</Piece>\n</PolyData>\n</VTKFile>\n", kind);
+  return fmt::to_string(out);
 }
 
 }  // namespace sablier

@@ -3,8 +3,6 @@
 
 #include <toml++/toml.h>
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -12,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "io/obstacle_geometry.hpp"
 #include "io/render_obstacles.hpp"
 #include "io/writers.hpp"
 
@@ -442,27 +441,7 @@ std::vector<ObstacleConfig> obstacles_at_frame(const RenderOptions& opt, double 
     if (b.obstacle < 0 || static_cast<std::size_t>(b.obstacle) >= out.size()) continue;
     ObstacleConfig& o = out[b.obstacle];
     if (!o.dynamic()) continue;
-    if (o.shape == ObstacleShape::Box) {
-      const ObstacleConfig& start = opt.obstacles[b.obstacle];
-      for (int a = 0; a < 3; ++a) {
-        const double half = 0.5 * (start.max[a] - start.min[a]);
-        o.min[a] = b.centre[a] - half;
-        o.max[a] = b.centre[a] + half;
-      }
-      // The orientation as an angle about an axis (make_obstacle's form).
-      constexpr double kDegrees = 180.0 / 3.14159265358979323846;
-      if (dimension == 2) {
-        o.angle_degrees = b.angle * kDegrees;
-      } else {
-        const Eigen::AngleAxisd turn(
-            Eigen::Quaterniond(b.quaternion[0], b.quaternion[1], b.quaternion[2], b.quaternion[3])
-                .normalized());
-        o.angle_degrees = turn.angle() * kDegrees;
-        for (int a = 0; a < 3; ++a) o.axis[a] = turn.axis()[a];
-      }
-      continue;
-    }
-    for (int a = 0; a < 3; ++a) o.center[a] = b.centre[a];
+    o = posed_body(opt.obstacles[b.obstacle], b.centre, b.angle, b.quaternion, dimension);
   }
   return out;
 }
