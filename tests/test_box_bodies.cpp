@@ -360,3 +360,44 @@ TEST(BoxBodies, StackOfBoxesAndABallComesToRest3D) { stack_comes_to_rest<3>(); }
 
 }  // namespace
 }  // namespace sablier
+
+namespace sablier {
+namespace {
+
+// A box resting on a fixed post narrower than its bottom face, under its
+// centre: none of the box's corners is over the post, so it is the post's
+// corners that hold it (their rows against the box's faces). Balanced, it
+// stays on the post, its bottom face at the post's top, level (to 1e-4
+// rad: the solves stop at a velocity residual of 1e-5; falling off would
+// turn it by order 1).
+template <int D>
+void box_rests_on_a_post() {
+  const std::string text =
+      D == 2 ? "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [1.0, 0.5]\n"
+               "resolution = [50, 25]\n[[obstacle]]\nshape = \"box\"\nmin = [0.49, 0.0]\n"
+               "max = [0.51, 0.2]\n[[obstacle]]\nshape = \"box\"\nmin = [0.4, 0.2]\n"
+               "max = [0.6, 0.25]\ndensity = 800\n" +
+                   kSpeck2D
+             : "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[grid]\nsize = [0.6, 0.3, 0.3]\n"
+               "resolution = [30, 15, 15]\n[[obstacle]]\nshape = \"box\"\n"
+               "min = [0.29, 0.14, 0.0]\nmax = [0.31, 0.16, 0.1]\n[[obstacle]]\nshape = \"box\"\n"
+               "min = [0.2, 0.1, 0.1]\nmax = [0.4, 0.2, 0.15]\ndensity = 800\n" +
+                   kSpeck3D;
+  Simulation<D> sim(parse_scene(text, "post.toml"));
+  run_until(sim, 0.5);
+  const Obstacle<D>& box = sim.obstacles()[1];
+  const double post_top = sim.obstacles()[0].b[D - 1];
+  const double bottom = box.a[D - 1] - box.b[D - 1];
+  const double tilt = std::acos(std::min(1.0, box.rotation(D - 1, D - 1)));
+  std::cout << D << "D box on a post: bottom at " << bottom << " m (post top " << post_top
+            << "), tilt " << tilt << " rad, speed " << box.velocity.norm() << " m/s\n";
+  EXPECT_NEAR(bottom, post_top, 1e-3 * sim.grid().h());
+  EXPECT_LT(tilt, 1e-4);
+  EXPECT_LT(box.velocity.norm(), 1e-6);
+}
+
+TEST(BoxBodies, BoxRestsOnANarrowPost2D) { box_rests_on_a_post<2>(); }
+TEST(BoxBodies, BoxRestsOnANarrowPost3D) { box_rests_on_a_post<3>(); }
+
+}  // namespace
+}  // namespace sablier

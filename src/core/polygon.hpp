@@ -89,6 +89,7 @@ class SolidPolygon {
     return a;
   }
 
+  const std::vector<Point2>& corners() const { return v_; }
   const Point2& lower() const { return lo_; }
   const Point2& upper() const { return hi_; }
 

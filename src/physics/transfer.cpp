@@ -177,6 +177,48 @@ void Simulation<D>::transfer_to_grid(double dt) {
         body_contacts.push_back(c);
       }
     };
+    // Rows of a fixed solid's corners (a box's, a polygon's) against box
+    // body b, where a corner pokes at the body's face (a box landing on a
+    // ledge's edge): the normal, the body's outward one there, points from
+    // the body to the corner, and the row's point on the body is the
+    // corner's nearest on its surface.
+    const auto corners_against_box = [&](std::size_t b, std::size_t s) {
+      const Obstacle<D>& o = obstacles[b];
+      const Obstacle<D>& q = obstacles[s];
+      if (q.gone) return;
+      std::vector<Vec<D>> corners;
+      if (q.shape == ObstacleShape::Box) {
+        for (int c = 0; c < NC; ++c) {
+          Vec<D> x;
+          for (int a = 0; a < D; ++a) x[a] = (c >> a & 1) ? q.b[a] : q.a[a];
+          corners.push_back(x);
+        }
+      } else if (q.shape == ObstacleShape::Polygon) {
+        for (const auto& p : q.polygon->corners()) {
+          Vec<D> x = Vec<D>::Zero();
+          for (int a = 0; a < 2; ++a) x[a] = p[a] + q.a[a];
+          corners.push_back(x);
+        }
+      }
+      const double reach = bounding_radius(o) + h;
+      for (std::size_t t = 0; t < corners.size(); ++t) {
+        const Vec<D>& x = corners[t];
+        if ((x - o.a).squaredNorm() >= reach * reach) continue;
+        Vec<D> n;  // the body's outward normal
+        const double distance = signed_distance(o, x, &n);
+        if (distance >= h) continue;
+        const std::int64_t key = static_cast<std::int64_t>(s) * count + static_cast<std::int64_t>(b) +
+                                 count * count * (NC + static_cast<std::int64_t>(t));
+        std::array<int, D> ghost{};
+        ghost[0] = -1;
+        ghost[1] = static_cast<int>(key % (cells[1] + 1));
+        if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
+        Contact c{grid_.node_index(ghost), n, static_cast<int>(b), std::max(distance, 0.0),
+                  std::min(o.mu, q.mu), -1, q.velocity};
+        c.arm = x - distance * n - o.a;
+        body_contacts.push_back(c);
+      }
+    };
     for (std::size_t k = 0; k < obstacles.size(); ++k) {
       const Obstacle<D>& o = obstacles[k];
       if (!o.dynamic) continue;
@@ -215,6 +257,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         }
         against_solid(k, m);
         if (box && q.dynamic) against_solid(m, k);
+        if (box && !q.dynamic) corners_against_box(k, m);
       }
     }
     for (const auto& list : obstacle_by_colour) {
