@@ -195,7 +195,8 @@ std::vector<BodyRow> parse_bodies_until(const std::string& text, int dimension, 
   std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line) || line != bodies_header(dimension))
-    throw IoError("bodies.csv: bad header");
+    throw IoError("bodies.csv: its header is not " + bodies_header(dimension) +
+                  " (written by another build?)");
   const int columns = dimension == 2 ? 9 : 16;
   std::vector<BodyRow> rows;
   std::vector<double> v;

@@ -428,6 +428,8 @@ std::vector<std::string> obstacle_scene_keys() {
   keys.push_back("obstacle[].mu");
   keys.push_back("obstacle[].velocity");
   keys.push_back("obstacle[].density");
+  keys.push_back("obstacle[].angle");
+  keys.push_back("obstacle[].axis");
   keys.push_back("obstacle[].until");
   return keys;
 }
