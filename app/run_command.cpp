@@ -47,10 +47,9 @@ void on_signal(int) { g_interrupted = 1; }
 
 // Files a run writes at the top of its folder: their presence means the
 // folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv",       "obstacles.csv",     "bodies.csv",
-                                 "series.pvd",      "grid_series.pvd",   "bodies_series.pvd",
-                                 "scene.toml",      "run.json",          "checkpoint.bin",
-                                 "obstacles.obj"};
+const char* const kRunFiles[] = {"stats.csv",       "obstacles.csv",     "bodies.csv", "series.pvd",
+                                 "grid_series.pvd", "bodies_series.pvd", "scene.toml", "run.json",
+                                 "checkpoint.bin",  "obstacles.obj"};
 
 std::size_t count_bodies(const SceneConfig& scene) {
   std::size_t n = 0;
@@ -298,8 +297,8 @@ class Runner {
       if (!bodies[k].dynamic) continue;
       double centre[3] = {0, 0, 0};
       for (int a = 0; a < D; ++a) centre[a] = bodies[k].a[a];
-      posed[k] = posed_body(scene_.obstacles[k], centre, bodies[k].angle,
-                            bodies[k].quaternion.data(), D);
+      posed[k] =
+          posed_body(scene_.obstacles[k], centre, bodies[k].angle, bodies[k].quaternion.data(), D);
     }
     write_file_atomic((set_.dir / bodies_name(f)).string(), format_bodies_vtp(posed, scene_));
     bodies_series_.push_back({time, bodies_name(f)});

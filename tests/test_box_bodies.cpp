@@ -74,7 +74,8 @@ TEST(BoxBodies, BoxSlidesDownAPolygonRampAtCoulombsRate) {
   const double a = box_on_polygon_ramp(0.3, &spin, &drift);
   const double expected = 9.81 * (std::sin(theta) - 0.3 * std::cos(theta));
   std::cout << "2D box on a 30-degree ramp, mu 0.3: " << a << " m/s^2 against Coulomb's "
-            << expected << " (relative difference " << a / expected - 1.0 << "); spin " << spin << " rad/s, turned by " << drift << " rad\n";
+            << expected << " (relative difference " << a / expected - 1.0 << "); spin " << spin
+            << " rad/s, turned by " << drift << " rad\n";
   EXPECT_NEAR(a / expected, 1.0, 1e-6);
   EXPECT_LT(spin, 1e-4);
   EXPECT_LT(drift, 1e-4);
@@ -89,8 +90,8 @@ TEST(BoxBodies, BoxSlidesDownAPolygonRampAtCoulombsRate) {
 // body's own mu against stick walls), without turning.
 TEST(BoxBodies, BoxSlidesOnATiltedFloorAtCoulombsRate3D) {
   const double theta = 25.0 * kPi / 180.0, mu = 0.2;
-  const std::string text = "dimension = 3\ngravity = [" + num(9.81 * std::sin(theta)) +
-                           ", 0.0, " + num(-9.81 * std::cos(theta)) +
+  const std::string text = "dimension = 3\ngravity = [" + num(9.81 * std::sin(theta)) + ", 0.0, " +
+                           num(-9.81 * std::cos(theta)) +
                            "]\n[grid]\nsize = [0.6, 0.3, 0.3]\nresolution = [30, 15, 15]\n"
                            "[boundary]\ndefault = \"stick\"\n[[obstacle]]\nshape = \"box\"\n"
                            "min = [0.05, 0.1, 0.0001]\nmax = [0.25, 0.2, 0.0501]\n"
@@ -102,8 +103,9 @@ TEST(BoxBodies, BoxSlidesOnATiltedFloorAtCoulombsRate3D) {
   const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
   const auto& q = sim.obstacles()[0].quaternion;
   std::cout << "3D box on a floor tilted 25 degrees, mu 0.2: " << a << " m/s^2 against Coulomb's "
-            << expected << " (relative difference " << a / expected - 1.0 << "); spin " << spin << " rad/s, orientation (" << q[0] << ", " << q[1]
-            << ", " << q[2] << ", " << q[3] << ")\n";
+            << expected << " (relative difference " << a / expected - 1.0 << "); spin " << spin
+            << " rad/s, orientation (" << q[0] << ", " << q[1] << ", " << q[2] << ", " << q[3]
+            << ")\n";
   EXPECT_NEAR(a / expected, 1.0, 1e-6);
   EXPECT_LT(spin, 1e-4);
   EXPECT_NEAR(q[0], 1.0, 1e-8);
@@ -171,8 +173,8 @@ void tilted_box_falls_flat(const std::string& orientation) {
   std::cout << D << "D box released turned (" << orientation.substr(0, orientation.size() - 1)
             << "): after 1.5 s centre height " << box.a[D - 1] << " m on its side of half "
             << box.b[up] << " m, tilt " << tilt << " rad, speed " << box.velocity.norm()
-            << " m/s, spin " << box.spin.norm() << " rad/s; largest energy gain of a step "
-            << worst << " of m g z0\n";
+            << " m/s, spin " << box.spin.norm() << " rad/s; largest energy gain of a step " << worst
+            << " of m g z0\n";
   EXPECT_NEAR(box.a[D - 1], box.b[up], 1e-3 * box.b[up]);
   EXPECT_LT(tilt, 1e-3);
   EXPECT_LT(box.velocity.norm(), 1e-3);
@@ -180,7 +182,9 @@ void tilted_box_falls_flat(const std::string& orientation) {
   EXPECT_LT(worst, 1e-9);
 }
 
-TEST(BoxBodies, TurnedBoxFallsFlatAndNeverGainsEnergy2D) { tilted_box_falls_flat<2>("angle = 35\n"); }
+TEST(BoxBodies, TurnedBoxFallsFlatAndNeverGainsEnergy2D) {
+  tilted_box_falls_flat<2>("angle = 35\n");
+}
 TEST(BoxBodies, TurnedBoxFallsFlatAndNeverGainsEnergy3D) {
   tilted_box_falls_flat<3>("angle = 40\naxis = [1, 2, 0.5]\n");
 }
@@ -193,7 +197,8 @@ TEST(BoxBodies, FreeRotationKeepsAngularMomentum3D) {
   const std::string text =
       "dimension = 3\ngravity = [0.0, 0.0, 0.0]\n[grid]\nsize = [0.6, 0.3, 0.3]\n"
       "resolution = [30, 15, 15]\n[[obstacle]]\nshape = \"box\"\nmin = [0.2, 0.1, 0.1]\n"
-      "max = [0.36, 0.2, 0.16]\ndensity = 700\n" + kSpeck3D;
+      "max = [0.36, 0.2, 0.16]\ndensity = 700\n" +
+      kSpeck3D;
   Simulation<3> sim(parse_scene(text, "spin.toml"));
   const Obstacle<3>& box = sim.obstacles()[0];
   sim.set_body_state(0, box.a, Vec<3>::Zero(), Vec<3>(0.3, 0.5, 5.0), 0.0, box.quaternion);
@@ -205,7 +210,8 @@ TEST(BoxBodies, FreeRotationKeepsAngularMomentum3D) {
   for (int i = 0; i < 100; ++i) sim.step(0.01);
   const Vec<3> L1 = momentum();
   const double E1 = body_energy(sim);
-  std::cout << "free rotation, 1 s: |L| " << L0.norm() << " -> " << L1.norm() << ", direction off by "
+  std::cout << "free rotation, 1 s: |L| " << L0.norm() << " -> " << L1.norm()
+            << ", direction off by "
             << std::acos(std::min(1.0, L0.normalized().dot(L1.normalized()))) << " rad; energy "
             << E0 << " -> " << E1 << " J\n";
   EXPECT_NEAR(L1.norm() / L0.norm(), 1.0, 1e-3);
@@ -347,8 +353,8 @@ void stack_comes_to_rest() {
   std::cout << D << "D stack after 1.5 s: lower box centre " << o[0].a[D - 1] << " (half "
             << o[0].b[D - 1] << "), its top " << floor_box_top << "; upper box from " << top_low
             << " to " << top_high << "; ball's bottom " << ball_low << "; speeds "
-            << o[0].velocity.norm() << ", " << o[1].velocity.norm() << ", "
-            << o[2].velocity.norm() << " m/s\n";
+            << o[0].velocity.norm() << ", " << o[1].velocity.norm() << ", " << o[2].velocity.norm()
+            << " m/s\n";
   EXPECT_NEAR(o[0].a[D - 1], o[0].b[D - 1], 1e-3 * h);
   EXPECT_NEAR(top_low, floor_box_top, 1e-3 * h);
   EXPECT_NEAR(ball_low, top_high, 1e-3 * h);

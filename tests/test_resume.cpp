@@ -3,11 +3,10 @@
 // stopped; a damaged checkpoint is refused with one line and nothing written.
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <utility>

@@ -354,7 +354,8 @@ TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
                              "[[obstacle]]\nshape = \"cylinder\"\ncenter = [0.45, 0.2, 0.0]\n"
                              "radius = 0.02\nheight = 0.1\n"
                              "[[obstacle]]\nshape = \"mesh\"\nfile = \"" +
-                             obj.string() + "\"\nscale = 0.05\ntranslate = [0.3, 0.02, 0.0]\n"
+                             obj.string() +
+                             "\"\nscale = 0.05\ntranslate = [0.3, 0.02, 0.0]\n"
                              "[[obstacle]]\nshape = \"box\"\nmin = [0.05, 0.15, 0.15]\n"
                              "max = [0.1, 0.2, 0.2]\ndensity = 500\nangle = 10\naxis = [0, 1, 1]\n";
   std::set<std::string> written{"boundary.default"};

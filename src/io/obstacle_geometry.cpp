@@ -2,12 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "core/mesh.hpp"
 
@@ -226,14 +225,16 @@ ObstacleConfig posed_body(const ObstacleConfig& start, const double centre[3], d
     o.angle_degrees = angle * kDegrees;
   } else {
     const Eigen::AngleAxisd turn(
-        Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3]).normalized());
+        Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3])
+            .normalized());
     o.angle_degrees = turn.angle() * kDegrees;
     for (int a = 0; a < 3; ++a) o.axis[a] = turn.axis()[a];
   }
   return o;
 }
 
-std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles, const SceneConfig& scene) {
+std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles,
+                              const SceneConfig& scene) {
   const int d = scene.dimension;
   std::vector<P3> points;
   std::vector<std::vector<int>> cells;  // point indices over the whole file

@@ -32,6 +32,7 @@ ObstacleConfig posed_body(const ObstacleConfig& start, const double centre[3], d
 // closed lines in the z = 0 plane, each cell with the body's obstacle index
 // (cell array `obstacle`). A turned body's surface is turned with it (a
 // ball's tessellation too, so that its rolling shows).
-std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles, const SceneConfig& scene);
+std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles,
+                              const SceneConfig& scene);
 
 }  // namespace sablier

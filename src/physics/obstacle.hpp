@@ -196,7 +196,8 @@ inline double box_distance(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x, 
   const Vec<D> outside = q.cwiseMax(0.0);
   const double out_len = outside.norm();
   if (out_len > 0.0) {
-    for (int k = 0; k < D; ++k) (*normal)[k] = (x[k] < centre[k] ? -outside[k] : outside[k]) / out_len;
+    for (int k = 0; k < D; ++k)
+      (*normal)[k] = (x[k] < centre[k] ? -outside[k] : outside[k]) / out_len;
     return out_len;
   }
   int axis = 0;

@@ -96,8 +96,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
     double mu = 0.0;    // and the friction there
     int other = -1;     // the solid, when it is another body
     Vec<D> surface_velocity = Vec<D>::Zero();  // the solid's, when it is a moving obstacle
-    Vec<D> arm = Vec<D>::Zero();        // a body against a solid: its point from its centre
-    Vec<D> other_arm = Vec<D>::Zero();  // and the other body's, from that one's centre
+    Vec<D> arm = Vec<D>::Zero();               // a body against a solid: its point from its centre
+    Vec<D> other_arm = Vec<D>::Zero();         // and the other body's, from that one's centre
   };
   std::vector<std::vector<Contact>> obstacle_by_colour;
   // Rigid bodies' rows come last, in one group that the solver updates in
@@ -167,8 +167,12 @@ void Simulation<D>::transfer_to_grid(double dt) {
         ghost[0] = -1;
         ghost[1] = static_cast<int>(key % (cells[1] + 1));
         if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
-        Contact c{grid_.node_index(ghost), n, static_cast<int>(b), std::max(gap, 0.0),
-                  std::min(o.mu, q.mu), q.dynamic ? static_cast<int>(s) : -1,
+        Contact c{grid_.node_index(ghost),
+                  n,
+                  static_cast<int>(b),
+                  std::max(gap, 0.0),
+                  std::min(o.mu, q.mu),
+                  q.dynamic ? static_cast<int>(s) : -1,
                   q.dynamic ? Vec<D>::Zero() : q.velocity};
         c.arm = (points[t].at - o.a) + points[t].reach * n;
         if (q.dynamic)  // the solid's point nearest ours, from its centre
@@ -207,14 +211,15 @@ void Simulation<D>::transfer_to_grid(double dt) {
         Vec<D> n;  // the body's outward normal
         const double distance = signed_distance(o, x, &n);
         if (distance >= h) continue;
-        const std::int64_t key = static_cast<std::int64_t>(s) * count + static_cast<std::int64_t>(b) +
+        const std::int64_t key = static_cast<std::int64_t>(s) * count +
+                                 static_cast<std::int64_t>(b) +
                                  count * count * (NC + static_cast<std::int64_t>(t));
         std::array<int, D> ghost{};
         ghost[0] = -1;
         ghost[1] = static_cast<int>(key % (cells[1] + 1));
         if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
-        Contact c{grid_.node_index(ghost), n, static_cast<int>(b), std::max(distance, 0.0),
-                  std::min(o.mu, q.mu), -1, q.velocity};
+        Contact c{grid_.node_index(ghost), n,  static_cast<int>(b), std::max(distance, 0.0),
+                  std::min(o.mu, q.mu),    -1, q.velocity};
         c.arm = x - distance * n - o.a;
         body_contacts.push_back(c);
       }

@@ -162,12 +162,12 @@ void read_orientation(TableReader& t, ObstacleConfig& o, int d) {
   o.angle_degrees = t.number("angle", 0.0, Range{-360.0, 360.0, false, false});
   if (!t.has("axis")) return;
   if (d == 2)
-    t.fail_at(t.node("axis"), "axis",
-              "2D bodies turn about z; allowed: axis in 3D scenes only");
+    t.fail_at(t.node("axis"), "axis", "2D bodies turn about z; allowed: axis in 3D scenes only");
   Vec3d a = t.vector("axis", 3, std::nullopt, Range());
   const double len = length(a);
   if (!(len > 0.0) || !std::isfinite(len))
-    t.fail_at(t.node("axis"), "axis", "zero or too long; allowed: a nonzero vector of finite numbers");
+    t.fail_at(t.node("axis"), "axis",
+              "zero or too long; allowed: a nonzero vector of finite numbers");
   if (std::abs(len - 1.0) > 1e-14)
     for (double& x : a) x /= len;
   o.axis = a;

@@ -113,8 +113,8 @@ struct ConeProblem {
   // second body takes the force the row puts on the node.
   int first_body_row = std::numeric_limits<int>::max();  // none unless set
   std::int64_t first_body_entry = std::numeric_limits<std::int64_t>::max();
-  std::vector<Mat<D>> spin_inverse;  // per body: dt J^-1 about world axes
-  std::vector<char> spin_diagonal;   // per body: spin_inverse is diagonal (inv_mass holds it)
+  std::vector<Mat<D>> spin_inverse;        // per body: dt J^-1 about world axes
+  std::vector<char> spin_diagonal;         // per body: spin_inverse is diagonal (inv_mass holds it)
   std::vector<std::int64_t> contact_body;  // per contact row: the body's velocity index, or -1
   std::vector<Vec<D>> contact_arm;         // per contact row: node position - body centre, m
   std::vector<std::int64_t> contact_other_body;  // per contact row: a second body, or -1
