@@ -194,31 +194,17 @@ void dropped_ball(const SceneConfig& s, double surface, double duration) {
   const double m = sim.obstacles()[0].mass, r = sim.obstacles()[0].radius;
   Vec<D> g;
   for (int a = 0; a < D; ++a) g[a] = s.gravity[a];
-  Vec<D> v_prev = sim.obstacles()[0].velocity;
-  double worst = 0.0, impulse = 0.0, span = 0.0;
-  while (sim.time() < duration - 1e-12) {
-    const double dt = sim.adaptive_dt(duration - sim.time());
-    const StepInfo info = sim.step(dt);
-    const Obstacle<D>& b = sim.obstacles()[0];
-    Vec<D> force;
-    for (int a = 0; a < D; ++a) force[a] = info.obstacle_force[0][a];
-    const Vec<D> gained = m * (b.velocity - v_prev) - (force + m * g) * dt;
-    worst = std::max(worst, gained.norm() / (m * g.norm() * dt));
-    v_prev = b.velocity;
-    if (sim.time() > 0.5 * duration) {
-      impulse += force[D - 1] * dt;
-      span += dt;
-    }
-  }
+  const test::BodyBalance run = test::run_body_balance(sim, duration);
+  const double worst = run.worst;
   const Obstacle<D>& b = sim.obstacles()[0];
   const double weight = m * g.norm();
   std::cout << D << "D ball dropped on a bed: after " << duration << " s centre height "
             << b.a[D - 1] << " m (surface " << surface << ", radius " << r << "), speed "
             << b.velocity.norm() << " m/s, mean force of the sand over the second half "
-            << impulse / span << " N against weight " << weight << " N; momentum balance to "
+            << run.mean_force << " N against weight " << weight << " N; momentum balance to "
             << worst << "\n";
   EXPECT_LT(worst, 1e-9);
-  EXPECT_NEAR(impulse / span, weight, 0.01 * weight);
+  EXPECT_NEAR(run.mean_force, weight, 0.01 * weight);
   EXPECT_LT(b.velocity.norm(), 0.05);
   EXPECT_LT(b.a[D - 1], surface + r);
   EXPECT_GT(b.a[D - 1], surface - r);

@@ -112,4 +112,40 @@ void run_until(Simulation<D>& sim, double t, double max_dt = 1e300) {
   }
 }
 
+// Runs body 0 of `sim` (the scene's first [[obstacle]], a rigid body) for
+// `duration` s with adaptive steps, checking its momentum balance at every
+// step: m (V_n - V_{n-1}) = (F_n + m g) dt_n, F_n the force of the sand's
+// rows on it (StepInfo::obstacle_force). `worst` is the largest imbalance
+// relative to m |g| dt_n; `mean_force` the force along the last axis over
+// the second half of the run, weighted by dt.
+struct BodyBalance {
+  double worst = 0.0, mean_force = 0.0;
+};
+
+template <int D>
+BodyBalance run_body_balance(Simulation<D>& sim, double duration) {
+  const double m = sim.obstacles()[0].mass;
+  Vec<D> g;
+  for (int a = 0; a < D; ++a) g[a] = sim.scene().gravity[a];
+  Vec<D> v_prev = sim.obstacles()[0].velocity;
+  BodyBalance out;
+  double impulse = 0.0, span = 0.0;
+  while (sim.time() < duration - 1e-12) {
+    const double dt = sim.adaptive_dt(duration - sim.time());
+    const StepInfo info = sim.step(dt);
+    const Obstacle<D>& b = sim.obstacles()[0];
+    Vec<D> force;
+    for (int a = 0; a < D; ++a) force[a] = info.obstacle_force[0][a];
+    const Vec<D> gained = m * (b.velocity - v_prev) - (force + m * g) * dt;
+    out.worst = std::max(out.worst, gained.norm() / (m * g.norm() * dt));
+    v_prev = b.velocity;
+    if (sim.time() > 0.5 * duration) {
+      impulse += force[D - 1] * dt;
+      span += dt;
+    }
+  }
+  out.mean_force = impulse / span;
+  return out;
+}
+
 }  // namespace sablier::test
