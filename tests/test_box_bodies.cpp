@@ -127,10 +127,10 @@ double body_energy(const Simulation<D>& sim) {
     if (!o.dynamic) continue;
     double spin = 0.0;
     if constexpr (D == 2) {
-      spin = o.inertia[0] * o.spin[0] * o.spin[0];
+      spin = o.inertia(0, 0) * o.spin[0] * o.spin[0];
     } else {
       const Vec<D> w = o.rotation.transpose() * o.spin;  // in the body's axes
-      spin = w.dot(o.inertia.cwiseProduct(w));
+      spin = w.dot(o.inertia * w);
     }
     e += 0.5 * o.mass * o.velocity.squaredNorm() + 0.5 * spin - o.mass * g.dot(o.a);
   }
@@ -203,7 +203,7 @@ TEST(BoxBodies, FreeRotationKeepsAngularMomentum3D) {
   const Obstacle<3>& box = sim.obstacles()[0];
   sim.set_body_state(0, box.a, Vec<3>::Zero(), Vec<3>(0.3, 0.5, 5.0), 0.0, box.quaternion);
   const auto momentum = [&] {
-    return Vec<3>(box.rotation * box.inertia.asDiagonal() * box.rotation.transpose() * box.spin);
+    return Vec<3>(box.rotation * box.inertia * box.rotation.transpose() * box.spin);
   };
   const Vec<3> L0 = momentum();
   const double E0 = body_energy(sim);
@@ -258,7 +258,7 @@ void box_dropped_on_sand() {
   const double weight = m * g.norm();
   // The lowest corner's height.
   double bottom = 1e300;
-  for (const Vec<D>& c : box_corners(b)) bottom = std::min(bottom, c[D - 1]);
+  for (const Vec<D>& c : body_points(b)) bottom = std::min(bottom, c[D - 1]);
   std::cout << D << "D box dropped turned on a bed: after " << duration << " s lowest corner at "
             << bottom << " m (surface " << surface << "), speed " << b.velocity.norm()
             << " m/s, spin " << b.spin.norm() << " rad/s, mean force of the sand over the last "
@@ -329,7 +329,7 @@ void stack_comes_to_rest() {
   const auto& o = sim.obstacles();
   const double floor_box_top = o[0].a[D - 1] + o[0].b[D - 1];
   double top_low = 1e300, top_high = -1e300;
-  for (const Vec<D>& c : box_corners(o[1])) {
+  for (const Vec<D>& c : body_points(o[1])) {
     top_low = std::min(top_low, c[D - 1]);
     top_high = std::max(top_high, c[D - 1]);
   }

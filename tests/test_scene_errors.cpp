@@ -340,11 +340,19 @@ std::vector<BadScene> obstacle_errors() {
        with(block + "\"polygon\"\nvertices = [[1.1, 0.1], [1.2, 0.1], [1.2, 0.2]]\n"),
        "bad.toml:11: obstacle[0].vertices: the obstacle spans [1.1, 1.2] on x, outside the box",
        "reaches into or touches the box"},
-      {"obstacle polygon with a density",
-       with(block + "\"polygon\"\nvertices = [[0.5, 0.1], [0.6, 0.1], [0.6, 0.2]]\n"
+      {"obstacle plane with a density", with(plane + "normal = [0, 1]\ndensity = 2500\n"),
+       "bad.toml:13: obstacle[0].density: a plane cannot be a rigid body",
+       "density on a disk, box or polygon"},
+      {"obstacle cylinder with a density",
+       kBase3D + block + "\"cylinder\"\ncenter = [0.2, 0.1, 0.0]\nradius = 0.02\nheight = "
+                         "0.05\ndensity = 2500\n",
+       "bad.toml:15: obstacle[0].density: a cylinder cannot be a rigid body",
+       "density on a sphere, box or mesh"},
+      {"obstacle rigid polygon crossing itself",
+       with(block + "\"polygon\"\nvertices = [[0.5, 0.1], [0.7, 0.2], [0.7, 0.1], [0.5, 0.25]]\n"
                     "density = 2500\n"),
-       "bad.toml:12: obstacle[0].density: a polygon cannot be a rigid body yet",
-       "density on a disk or a box only"},
+       "bad.toml:11: obstacle[0].vertices: edges 0 and 2 of the rigid polygon meet",
+       "does not cross or touch itself"},
       {"obstacle mesh file missing", kBase3D + block + "\"mesh\"\nfile = \"no_such_mesh.obj\"\n",
        "bad.toml:12: obstacle[0].file: cannot use the mesh file", "closed triangle mesh"},
       {"obstacle until zero", with(box + "max = [0.6, 0.2]\nuntil = 0\n"),

@@ -165,17 +165,22 @@ Shape shape_of(const ObstacleConfig& o, const SceneConfig& s) {
       }
       break;
   }
-  if (o.dynamic() && o.angle_degrees != 0.0) {
-    // A body turned about its centre by `angle` about `axis` (z in 2D).
+  if (o.dynamic()) {
+    // A body turned about its centre by `angle` about `axis` (z in 2D); a
+    // polygon's or mesh's solid, given where the scene had it, moved from
+    // its centroid to the body's centre.
     const Eigen::Vector3d axis =
         d == 2 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(o.axis[0], o.axis[1], o.axis[2]);
     const Eigen::Matrix3d R =
         Eigen::AngleAxisd(o.angle_degrees * kPi / 180.0, axis.normalized()).toRotationMatrix();
-    Eigen::Vector3d c(0.0, 0.0, 0.0);
-    for (int a = 0; a < d; ++a)
-      c[a] = o.shape == ObstacleShape::Box ? 0.5 * (o.min[a] + o.max[a]) : o.center[a];
+    Eigen::Vector3d from(0.0, 0.0, 0.0), to(0.0, 0.0, 0.0);
+    for (int a = 0; a < d; ++a) {
+      const bool solid = o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh;
+      to[a] = o.shape == ObstacleShape::Box ? 0.5 * (o.min[a] + o.max[a]) : o.center[a];
+      from[a] = solid ? o.centroid[a] : to[a];
+    }
     for (P3& p : g.v) {
-      const Eigen::Vector3d x = c + R * (Eigen::Vector3d(p[0], p[1], p[2]) - c);
+      const Eigen::Vector3d x = to + R * (Eigen::Vector3d(p[0], p[1], p[2]) - from);
       p = {x[0], x[1], d == 2 ? 0.0 : x[2]};
     }
   }

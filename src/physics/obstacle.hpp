@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/distance_grid.hpp"
+#include "core/mass_properties.hpp"
 #include "core/polygon.hpp"
 #include "core/tensor.hpp"
 #include "scene/scene.hpp"
@@ -24,7 +25,7 @@ struct Obstacle {
   // plane: point; box: min; ball, cylinder: centre (of the base); polygon,
   // mesh: the translation of their solid (zero unless it moves)
   Vec<D> a = Vec<D>::Zero();
-  Vec<D> b = Vec<D>::Zero();  // plane: unit normal; box: max
+  Vec<D> b = Vec<D>::Zero();  // plane: unit normal; box: max (bodies: below)
   double radius = 0.0;
   double height = 0.0;
   std::shared_ptr<const SolidPolygon> polygon;   // 2D polygons
@@ -33,18 +34,23 @@ struct Obstacle {
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
   double until = 1e300;              // s: taken away from this time on (scene's obstacle[].until)
   bool gone = false;                 // taken away: no longer there at all
-  // A rigid body (a ball or a box with a density): its state is advanced by
-  // the simulation, not by at_time. Mass in kg (kg/m in 2D), moments of
-  // inertia about its centre along its own axes in kg m^2 (2D: inertia[0],
-  // kg m, about z), angular velocity in rad/s about world axes (2D:
-  // spin[0]), and its orientation: in 2D the angle it has turned through
-  // (rad, counter-clockwise), in 3D a unit quaternion (w, x, y, z). A box
-  // body keeps its centre in `a` (as a ball does) and its half sides in `b`:
-  // it spans a + rotation [-b, b]; `rotation` follows the orientation
-  // (set_orientation).
+  // A rigid body (a ball, box, polygon or mesh with a density): its state
+  // is advanced by the simulation, not by at_time. Mass in kg (kg/m in 2D),
+  // inertia tensor about its centre of mass in the scene's unturned axes,
+  // kg m^2 (2D: entry (0, 0), kg m, about z), angular velocity in rad/s
+  // about world axes (2D: spin[0]), and its orientation: in 2D the angle it
+  // has turned through (rad, counter-clockwise), in 3D a unit quaternion
+  // (w, x, y, z); `rotation` follows it (set_orientation). Every body keeps
+  // its centre of mass in `a`. A box keeps its half sides in `b`: it spans
+  // a + rotation [-b, b]. A polygon or mesh keeps its solid as the scene
+  // gave it (unturned) and that solid's centroid in `b`: a point x of the
+  // world is b + rotation^T (x - a) of the solid; `points` are its corners
+  // or vertices there, and `extent` its largest distance from the centroid.
   bool dynamic = false;
   double mass = 0.0;
-  Vec<D> inertia = Vec<D>::Zero();
+  Mat<D> inertia = Mat<D>::Zero();
+  std::shared_ptr<const std::vector<Vec<D>>> points;
+  double extent = 0.0;
   Vec<D> spin = Vec<D>::Zero();
   double angle = 0.0;
   std::array<double, 4> quaternion{1.0, 0.0, 0.0, 0.0};
@@ -66,19 +72,34 @@ inline void set_orientation(Obstacle<D>& o) {
 // The radius of the smallest ball about its centre that holds a body.
 template <int D>
 inline double bounding_radius(const Obstacle<D>& o) {
-  return o.shape == ObstacleShape::Box ? o.b.norm() : o.radius;
+  switch (o.shape) {
+    case ObstacleShape::Box: return o.b.norm();
+    case ObstacleShape::Ball: return o.radius;
+    default: return o.extent;
+  }
 }
 
-// A box body's corners in world coordinates (2^D of them, corner c taking
-// the upper side on axis k when bit k of c is set).
+// The points by which a box, polygon or mesh body meets other solids, in
+// world coordinates: a box's 2^D corners (corner c taking the upper side on
+// axis k when bit k of c is set), a polygon's corners, a mesh's vertices.
 template <int D>
-inline std::array<Vec<D>, ipow(2, D)> box_corners(const Obstacle<D>& o) {
-  std::array<Vec<D>, ipow(2, D)> out;
-  for (int c = 0; c < ipow(2, D); ++c) {
-    Vec<D> local;
-    for (int k = 0; k < D; ++k) local[k] = (c >> k & 1) ? o.b[k] : -o.b[k];
-    out[c] = o.a + o.rotation * local;
+inline void body_points(const Obstacle<D>& o, std::vector<Vec<D>>& out) {
+  out.clear();
+  if (o.shape == ObstacleShape::Box) {
+    for (int c = 0; c < ipow(2, D); ++c) {
+      Vec<D> local;
+      for (int k = 0; k < D; ++k) local[k] = (c >> k & 1) ? o.b[k] : -o.b[k];
+      out.push_back(o.a + o.rotation * local);
+    }
+  } else if (o.points) {
+    for (const Vec<D>& p : *o.points) out.push_back(o.a + o.rotation * (p - o.b));
   }
+}
+
+template <int D>
+inline std::vector<Vec<D>> body_points(const Obstacle<D>& o) {
+  std::vector<Vec<D>> out;
+  body_points(o, out);
   return out;
 }
 
@@ -88,12 +109,21 @@ template <int D>
 inline Mat<D> spin_inverse(const Obstacle<D>& o, double dt) {
   if constexpr (D == 2) {
     Mat<D> m = Mat<D>::Zero();
-    m(0, 0) = dt / o.inertia[0];
+    m(0, 0) = dt / o.inertia(0, 0);
     return m;
   } else {
-    if (o.shape != ObstacleShape::Box) return Mat<D>::Identity() * (dt / o.inertia[0]);  // a ball
-    return o.rotation * (dt * o.inertia.cwiseInverse()).asDiagonal() * o.rotation.transpose();
+    if (o.shape == ObstacleShape::Ball) return Mat<D>::Identity() * (dt / o.inertia(0, 0));
+    if (o.inertia.isDiagonal(0.0))  // a box
+      return o.rotation * (dt * o.inertia.diagonal().cwiseInverse()).asDiagonal() *
+             o.rotation.transpose();
+    return o.rotation * (dt * o.inertia.inverse()) * o.rotation.transpose();
   }
+}
+
+// A polygon's or mesh's mass properties per unit density.
+inline MassProperties body_mass_properties(const ObstacleConfig& c) {
+  if (c.shape == ObstacleShape::Polygon) return polygon_mass_properties(c.polygon->corners());
+  return mesh_mass_properties(*c.surface);
 }
 
 template <int D>
@@ -139,14 +169,39 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
       // about z, m (w^2 + h^2) / 12.
       const double sq = size.squaredNorm();
       if constexpr (D == 2) {
-        o.inertia[0] = o.mass * sq / 12.0;
+        o.inertia(0, 0) = o.mass * sq / 12.0;
       } else {
-        for (int k = 0; k < D; ++k) o.inertia[k] = o.mass * (sq - size[k] * size[k]) / 12.0;
+        for (int k = 0; k < D; ++k) o.inertia(k, k) = o.mass * (sq - size[k] * size[k]) / 12.0;
       }
+    } else if (c.shape == ObstacleShape::Polygon || c.shape == ObstacleShape::Mesh) {
+      // The solid's mass properties (core/mass_properties.hpp), its corners
+      // or vertices, and its centroid; it starts at `center` (the parser
+      // sets it to the centroid).
+      const MassProperties m = body_mass_properties(c);
+      o.mass = c.density * m.measure;
+      if constexpr (D == 2) {
+        o.inertia(0, 0) = c.density * m.inertia[2][2];
+      } else {
+        for (int r = 0; r < 3; ++r)
+          for (int k = 0; k < 3; ++k) o.inertia(r, k) = c.density * m.inertia[r][k];
+      }
+      auto points = std::make_shared<std::vector<Vec<D>>>();
+      if constexpr (D == 2) {
+        for (const auto& p : c.polygon->corners()) points->push_back(Vec<D>(p[0], p[1]));
+      } else {
+        for (const Point3& p : c.surface->vertices) points->push_back(Vec<D>(p[0], p[1], p[2]));
+      }
+      for (int k = 0; k < D; ++k) {
+        o.b[k] = c.centroid[k];
+        o.a[k] = c.center[k];
+      }
+      for (const Vec<D>& p : *points) o.extent = std::max(o.extent, (p - o.b).norm());
+      o.points = std::move(points);
     } else {
       const double r = c.radius;
       o.mass = c.density * (D == 2 ? pi * r * r : 4.0 / 3.0 * pi * r * r * r);
-      o.inertia.setConstant((D == 2 ? 0.5 : 0.4) * o.mass * r * r);  // disk, solid sphere
+      // disk, solid sphere
+      o.inertia = Mat<D>::Identity() * ((D == 2 ? 0.5 : 0.4) * o.mass * r * r);
     }
     // The initial orientation: `angle` (degrees) about `axis` (3D; z in 2D).
     const double turn = c.angle_degrees * pi / 180.0;
@@ -243,6 +298,12 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
     case ObstacleShape::Polygon: {
       if constexpr (D == 2) {
         double nx = 0.0, ny = 0.0;
+        if (o.dynamic) {  // the solid as the scene gave it, where x is
+          const Vec<D> p = o.b + o.rotation.transpose() * (x - o.a);
+          const double s = o.polygon->signed_distance(p[0], p[1], &nx, &ny);
+          *normal = o.rotation * Vec<D>(nx, ny);
+          return s;
+        }
         const double s = o.polygon->signed_distance(x[0] - o.a[0], x[1] - o.a[1], &nx, &ny);
         *normal = Vec<D>(nx, ny);
         return s;
@@ -252,6 +313,12 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
     case ObstacleShape::Mesh: {
       if constexpr (D == 3) {
         Point3 n{};
+        if (o.dynamic) {
+          const Vec<D> p = o.b + o.rotation.transpose() * (x - o.a);
+          const double s = o.distance->signed_distance({p[0], p[1], p[2]}, &n);
+          *normal = o.rotation * Vec<D>(n[0], n[1], n[2]);
+          return s;
+        }
         const double s =
             o.distance->signed_distance({x[0] - o.a[0], x[1] - o.a[1], x[2] - o.a[2]}, &n);
         *normal = Vec<D>(n[0], n[1], n[2]);

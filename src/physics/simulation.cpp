@@ -185,8 +185,8 @@ void Simulation<D>::attach_bodies(double dt) {
     const Mat<D> J_inv = spin_inverse(o, dt);
     Vec<D> spin = o.spin;
     if constexpr (D == 3) {
-      if (o.shape == ObstacleShape::Box) {
-        const Mat<D> J = o.rotation * o.inertia.asDiagonal() * o.rotation.transpose();
+      if (o.shape != ObstacleShape::Ball) {
+        const Mat<D> J = o.rotation * o.inertia * o.rotation.transpose();
         spin -= J_inv * o.spin.cross(J * o.spin);
       }
     }

@@ -135,16 +135,18 @@ void Simulation<D>::transfer_to_grid(double dt) {
       Vec<D> at;
       double reach;
     };
-    const auto touch_points = [](const Obstacle<D>& o, std::array<Touch, NC>& out) {
-      if (o.shape != ObstacleShape::Box) {
-        out[0] = {o.a, o.radius};
-        return 1;
+    std::vector<Vec<D>> corners;
+    const auto touch_points = [&corners](const Obstacle<D>& o, std::vector<Touch>& out) {
+      out.clear();
+      if (o.shape == ObstacleShape::Ball) {
+        out.push_back({o.a, o.radius});
+        return static_cast<int>(out.size());
       }
-      const auto corners = box_corners(o);
-      for (int c = 0; c < NC; ++c) out[c] = {corners[c], 0.0};
-      return NC;
+      body_points(o, corners);
+      for (const Vec<D>& c : corners) out.push_back({c, 0.0});
+      return static_cast<int>(out.size());
     };
-    std::array<Touch, NC> points;
+    std::vector<Touch> points;
     // Rows of body b's points against solid s (the smaller friction of the
     // two, and the solid's motion: a moving plane drags the body along, as
     // it does the sand), on ghost nodes beyond the xmin face (zero velocity
@@ -176,21 +178,21 @@ void Simulation<D>::transfer_to_grid(double dt) {
                   q.dynamic ? Vec<D>::Zero() : q.velocity};
         c.arm = (points[t].at - o.a) + points[t].reach * n;
         if (q.dynamic)  // the solid's point nearest ours, from its centre
-          c.other_arm = q.shape == ObstacleShape::Box ? Vec<D>(points[t].at - distance * out - q.a)
-                                                      : Vec<D>(-q.radius * n);
+          c.other_arm = q.shape != ObstacleShape::Ball ? Vec<D>(points[t].at - distance * out - q.a)
+                                                       : Vec<D>(-q.radius * n);
         body_contacts.push_back(c);
       }
     };
-    // Rows of a fixed solid's corners (a box's, a polygon's) against box
-    // body b, where a corner pokes at the body's face (a box landing on a
-    // ledge's edge): the normal, the body's outward one there, points from
-    // the body to the corner, and the row's point on the body is the
-    // corner's nearest on its surface.
-    const auto corners_against_box = [&](std::size_t b, std::size_t s) {
+    // Rows of a fixed solid's corners (a box's, a polygon's) against body b
+    // (a box, polygon or mesh), where a corner pokes at the body's face (a
+    // box landing on a ledge's edge): the normal, the body's outward one
+    // there, points from the body to the corner, and the row's point on the
+    // body is the corner's nearest on its surface.
+    const auto corners_against_body = [&](std::size_t b, std::size_t s) {
       const Obstacle<D>& o = obstacles[b];
       const Obstacle<D>& q = obstacles[s];
       if (q.gone) return;
-      std::vector<Vec<D>> corners;
+      corners.clear();
       if (q.shape == ObstacleShape::Box) {
         for (int c = 0; c < NC; ++c) {
           Vec<D> x;
@@ -255,14 +257,14 @@ void Simulation<D>::transfer_to_grid(double dt) {
       for (std::size_t m = 0; m < obstacles.size(); ++m) {
         const Obstacle<D>& q = obstacles[m];
         if (m == k || (q.dynamic && m < k)) continue;
-        const bool box = o.shape == ObstacleShape::Box;
-        if (box && q.dynamic && q.shape != ObstacleShape::Box) {
-          against_solid(m, k);  // the ball against this box
+        const bool pointed = o.shape != ObstacleShape::Ball;  // meets by its corners
+        if (pointed && q.dynamic && q.shape == ObstacleShape::Ball) {
+          against_solid(m, k);  // the ball against this body
           continue;
         }
         against_solid(k, m);
-        if (box && q.dynamic) against_solid(m, k);
-        if (box && !q.dynamic) corners_against_box(k, m);
+        if (pointed && q.dynamic) against_solid(m, k);
+        if (pointed && !q.dynamic) corners_against_body(k, m);
       }
     }
     for (const auto& list : obstacle_by_colour) {

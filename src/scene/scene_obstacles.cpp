@@ -151,6 +151,32 @@ void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
                               obstacle_shape_name(o.shape, d)));
 }
 
+// A rigid polygon must not cross itself (its mass properties are those of
+// a simple polygon): no two edges that are not neighbours meet.
+void check_simple_polygon(TableReader& t, const ObstacleConfig& o) {
+  const std::vector<Vec3d>& v = o.vertices;
+  const std::size_t n = v.size();
+  const auto cross = [](const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // neighbours share a corner
+      const Vec3d &a = v[i], &b = v[(i + 1) % n], &c = v[j], &e = v[(j + 1) % n];
+      const double d1 = cross(a, b, c), d2 = cross(a, b, e), d3 = cross(c, e, a),
+                   d4 = cross(c, e, b);
+      bool overlap = true;  // the edges' bounding boxes (for collinear edges)
+      for (int k = 0; k < 2; ++k)
+        overlap = overlap && std::max(std::min(a[k], b[k]), std::min(c[k], e[k])) <=
+                                 std::min(std::max(a[k], b[k]), std::max(c[k], e[k]));
+      if (d1 * d2 <= 0.0 && d3 * d4 <= 0.0 && overlap)
+        t.fail_at(t.node("vertices"), "vertices",
+                  fmt::format("edges {} and {} of the rigid polygon meet; allowed: a polygon that "
+                              "does not cross or touch itself",
+                              i, j));
+    }
+}
+
 // A rigid body's initial orientation: `angle` (degrees, counter-clockwise
 // about its centre) and in 3D `axis` (normalised when read; z by default).
 void read_orientation(TableReader& t, ObstacleConfig& o, int d) {
@@ -230,8 +256,11 @@ void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Po
                    double reach = 0.0) {
   const double margin = 3.0 * s.cell_size() + reach;
   for (int a = 0; a < 3; ++a) {
-    lo[a] = std::max(o.extent_min[a] - margin, -margin);
-    hi[a] = std::min(o.extent_max[a] + margin, s.size[a] + margin);
+    lo[a] = o.extent_min[a] - margin;
+    hi[a] = o.extent_max[a] + margin;
+    if (o.dynamic()) continue;  // a body goes anywhere: its solid is sampled whole
+    lo[a] = std::max(lo[a], -margin);
+    hi[a] = std::min(hi[a], s.size[a] + margin);
   }
 }
 
@@ -274,7 +303,12 @@ template <int D>
 double config_distance(const ObstacleConfig& o, const Vec<D>& x) {
   if constexpr (D == 3)
     if (o.shape == ObstacleShape::Mesh) {
-      const Point3 c{x[0], x[1], x[2]};
+      Vec<D> p = x;
+      if (o.dynamic()) {  // where x is on the solid as the file gives it
+        const Obstacle<D> body = make_obstacle<D>(o);
+        p = body.b + body.rotation.transpose() * (x - body.a);
+      }
+      const Point3 c{p[0], p[1], p[2]};
       const double d = o.solid->distance(c);
       return o.solid->contains(c) ? -d : d;
     }
@@ -282,9 +316,10 @@ double config_distance(const ObstacleConfig& o, const Vec<D>& x) {
   return signed_distance(make_obstacle<D>(o), x, &n);
 }
 
-// The points by which a ball or box meets other solids (docs/scenes.md,
-// "Rigid bodies"): a ball's centre, reaching `reach` = its radius further,
-// or a box's corners (reach 0). Other shapes have none.
+// The points by which a solid meets a rigid body (docs/scenes.md, "Rigid
+// bodies"): a ball's centre, reaching `reach` = its radius further; a body's
+// corners or vertices, a fixed box's or polygon's corners (reach 0). Other
+// shapes have none.
 template <int D>
 std::vector<Vec<D>> contact_points(const ObstacleConfig& c, double* reach) {
   const Obstacle<D> o = make_obstacle<D>(c);
@@ -293,9 +328,22 @@ std::vector<Vec<D>> contact_points(const ObstacleConfig& c, double* reach) {
     *reach = o.radius;
     return {o.a};
   }
-  if (c.shape != ObstacleShape::Box) return {};
-  const auto corners = box_corners(o);
-  return {corners.begin(), corners.end()};
+  if (c.dynamic()) return body_points(o);
+  std::vector<Vec<D>> out;
+  if (c.shape == ObstacleShape::Box) {
+    for (int k = 0; k < ipow(2, D); ++k) {
+      Vec<D> x;
+      for (int a = 0; a < D; ++a) x[a] = (k >> a & 1) ? c.max[a] : c.min[a];
+      out.push_back(x);
+    }
+  } else if (c.shape == ObstacleShape::Polygon) {
+    for (const Vec3d& v : c.vertices) {
+      Vec<D> x = Vec<D>::Zero();
+      for (int a = 0; a < 2; ++a) x[a] = v[a];
+      out.push_back(x);
+    }
+  }
+  return out;
 }
 
 // How far the rigid body `b` and the solid `o` reach into each other (m;
@@ -368,12 +416,17 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
   o.mu = read_mu(t);
   o.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
   if (t.has("density")) {
-    if (o.shape != ObstacleShape::Ball && o.shape != ObstacleShape::Box)
+    if (o.shape == ObstacleShape::Plane || o.shape == ObstacleShape::Cylinder)
       t.fail_at(t.node("density"), "density",
-                fmt::format("a {} cannot be a rigid body yet; allowed: density on a {} or a box "
-                            "only",
-                            obstacle_shape_name(o.shape, d), d == 2 ? "disk" : "sphere"));
+                fmt::format("a {} cannot be a rigid body; allowed: density on a {}",
+                            obstacle_shape_name(o.shape, d),
+                            d == 2 ? "disk, box or polygon" : "sphere, box or mesh"));
     o.density = t.number("density", std::nullopt, kDensityRange);
+    if (o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh) {
+      if (o.shape == ObstacleShape::Polygon) check_simple_polygon(t, o);
+      o.centroid = body_mass_properties(o).centroid;
+      o.center = o.centroid;
+    }
   }
   read_orientation(t, o, d);
   if (t.has("until")) {
