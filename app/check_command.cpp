@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "physics/emission.hpp"
 #include "physics/simulation.hpp"
+#include "physics/obstacle.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_obstacles.hpp"
 
@@ -88,9 +89,13 @@ void print_obstacles(const SceneConfig& s) {
                             point(o.extent_max, d));
         break;
     }
+    const double mass = !o.dynamic() ? 0.0
+                        : d == 2     ? make_obstacle<2>(o).mass
+                                     : make_obstacle<3>(o).mass;
     const std::string body =
-        o.dynamic() ? fmt::format(", rigid body of density {:.6g} kg/m^3 starting at {} m/s",
-                                  o.density, point(o.velocity, d))
+        o.dynamic() ? fmt::format(", rigid body of density {:.6g} kg/m^3 ({:.6g} {}) starting at "
+                                  "{} m/s",
+                                  o.density, mass, d == 2 ? "kg/m" : "kg", point(o.velocity, d))
                     : "";
     const std::string gone =
         std::isfinite(o.until) ? fmt::format(", taken away at {:.6g} s", o.until) : "";
