@@ -234,10 +234,17 @@ TEST(Bodies, DroppedSphereIsCaughtByTheBed3D) {
 // the first step (deceleration mu g), the rolling speed and spin at the
 // end, and that it stays on the floor (height r). Sand: a small block in
 // a far corner, which the ball never meets.
+// With backspin (scene key `spin`, b = r omega_0 / v0 against the rolling
+// sense), the angular momentum about the contact point is kept while it
+// slides, so it ends rolling at v0 (1 - k b) / (1 + k), k = J / (m r^2):
+// backwards when k b > 1.
 template <int D>
-void ball_rolls(SceneConfig s, double rolling_fraction) {
+void ball_rolls(SceneConfig s, double k, double backspin = 0.0) {
   const double r = 0.04, v0 = 1.0, mu = 0.5, g = 9.81;
-  s = test::small_block_only<D>(std::move(s), Vec3d{0, 0, 0});
+  const double rolling_fraction = (1.0 - k * backspin) / (1.0 + k);
+  // (In 2D the block is in the far corner: a disk sent back by its
+  // backspin would otherwise meet the block's collapsing grains.)
+  s = test::small_block_only<D>(std::move(s), D == 2 ? Vec3d{0.45, 0, 0} : Vec3d{0, 0, 0});
   ObstacleConfig ball;
   ball.shape = ObstacleShape::Ball;
   ball.center = D == 2 ? Vec3d{0.1, r, 0} : Vec3d{0.1, 0.125, r};
@@ -245,16 +252,18 @@ void ball_rolls(SceneConfig s, double rolling_fraction) {
   ball.mu = mu;
   ball.density = 2500.0;
   ball.velocity = Vec3d{v0, 0, 0};
+  const double w0 = backspin * v0 / r;  // counter-clockwise in 2D, about -y in 3D
+  ball.spin = D == 2 ? Vec3d{0, 0, w0} : Vec3d{0, -w0, 0};
   s.obstacles.push_back(ball);
   Simulation<D> sim(s);
-  const double dt = 1.0 / 240;
+  const double dt = 1.0 / 240, end = backspin > 0.0 ? 0.4 : 0.2;
   sim.step(dt);
   EXPECT_NEAR(sim.obstacles()[0].velocity[0], v0 - mu * g * dt, 1e-9) << "sliding";
-  while (sim.time() < 0.2 - 1e-12) sim.step(std::min(dt, 0.2 - sim.time()));
+  while (sim.time() < end - 1e-12) sim.step(std::min(dt, end - sim.time()));
   const Obstacle<D>& b = sim.obstacles()[0];
   const double spin = D == 2 ? b.spin[0] : b.spin[1];  // about z (2D) or y (3D)
   const double expected = rolling_fraction * v0;
-  std::cout << D << "D ball on a rough floor: speed " << b.velocity[0] << " m/s against "
+  std::cout << D << "D ball on a rough floor, backspin " << backspin << ": speed " << b.velocity[0] << " m/s against "
             << expected << ", spin " << spin << " rad/s, height " << b.a[D - 1] << " m\n";
   EXPECT_NEAR(b.velocity[0], expected, 1e-6);
   // Rolling: the contact point is still, v + omega x (-r e_up) = 0.
@@ -262,10 +271,11 @@ void ball_rolls(SceneConfig s, double rolling_fraction) {
   EXPECT_NEAR(b.a[D - 1], r, 1e-9);
 }
 
-TEST(Bodies, DiskRollsAtTwoThirdsOfItsSpeed2D) { ball_rolls<2>(scene("drop2d.toml"), 2.0 / 3.0); }
-TEST(Bodies, SphereRollsAtFiveSeventhsOfItsSpeed3D) {
-  ball_rolls<3>(scene("bed3d.toml"), 5.0 / 7.0);
-}
+TEST(Bodies, DiskRollsAtTwoThirdsOfItsSpeed2D) { ball_rolls<2>(scene("drop2d.toml"), 0.5); }
+TEST(Bodies, SphereRollsAtFiveSeventhsOfItsSpeed3D) { ball_rolls<3>(scene("bed3d.toml"), 0.4); }
+// Backspin b = 3: the disk comes back at -1/3 v0, the sphere at -1/7 v0.
+TEST(Bodies, DiskWithBackspinComesBack2D) { ball_rolls<2>(scene("drop2d.toml"), 0.5, 3.0); }
+TEST(Bodies, SphereWithBackspinComesBack3D) { ball_rolls<3>(scene("bed3d.toml"), 0.4, 3.0); }
 
 // A spout pouring onto a rigid disk (scenes/drop2d.toml's): the body is
 // where the run has taken it, not where the scene put it, so the grains

@@ -357,7 +357,8 @@ TEST(SceneFile, KnownKeysAreTheKeysTheParserAccepts) {
                              obj.string() +
                              "\"\nscale = 0.05\ntranslate = [0.3, 0.02, 0.0]\n"
                              "[[obstacle]]\nshape = \"box\"\nmin = [0.05, 0.15, 0.15]\n"
-                             "max = [0.1, 0.2, 0.2]\ndensity = 500\nangle = 10\naxis = [0, 1, 1]\n";
+                             "max = [0.1, 0.2, 0.2]\ndensity = 500\nangle = 10\naxis = [0, 1, 1]\n"
+                             "spin = [0.0, 1.0, 0.0]\n";
   std::set<std::string> written{"boundary.default"};
   for (const std::string& text : {kFull2D, full3d}) {
     const std::string resolved = scene_to_toml(parse_scene(text, "full.toml"));

@@ -158,6 +158,13 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   o.mu = c.mu;
   for (int k = 0; k < D; ++k) o.velocity[k] = c.velocity[k];
   if (c.dynamic()) {
+    if constexpr (D == 2) {
+      o.spin[0] = c.spin[2];
+    } else {
+      for (int k = 0; k < 3; ++k) o.spin[k] = c.spin[k];
+    }
+  }
+  if (c.dynamic()) {
     constexpr double pi = 3.14159265358979323846;
     o.dynamic = true;
     if (c.shape == ObstacleShape::Box) {

@@ -192,6 +192,9 @@ struct ObstacleConfig {
   // centre, counter-clockwise about `axis` (3D, a unit vector; z in 2D).
   double angle_degrees = 0.0;
   Vec3d axis{0, 0, 1};
+  // A rigid body's initial angular velocity, rad/s about world axes (2D:
+  // spin[2], counter-clockwise, about z).
+  Vec3d spin{0, 0, 0};
   // A rigid polygon or mesh: the centroid of its solid as given (the
   // parser's; its `center` starts there), m.
   Vec3d centroid{0, 0, 0};

@@ -180,11 +180,16 @@ void check_simple_polygon(TableReader& t, const ObstacleConfig& o) {
 // A rigid body's initial orientation: `angle` (degrees, counter-clockwise
 // about its centre) and in 3D `axis` (normalised when read; z by default).
 void read_orientation(TableReader& t, ObstacleConfig& o, int d) {
-  for (const char* key : {"angle", "axis"})
+  for (const char* key : {"angle", "axis", "spin"})
     if (t.has(key) && !o.dynamic())
       t.fail_at(t.node(key), key,
-                "only a rigid body has an orientation; allowed: angle (and axis in 3D) on an "
-                "obstacle with a density");
+                "only a rigid body turns; allowed: angle, spin (and axis in 3D) on an obstacle "
+                "with a density");
+  if (d == 2) {
+    o.spin[2] = t.number("spin", 0.0, Range());
+  } else {
+    o.spin = t.vector("spin", 3, Vec3d{0, 0, 0}, Range());
+  }
   o.angle_degrees = t.number("angle", 0.0, Range{-360.0, 360.0, false, false});
   if (!t.has("axis")) return;
   if (d == 2)
@@ -483,6 +488,7 @@ std::vector<std::string> obstacle_scene_keys() {
   keys.push_back("obstacle[].density");
   keys.push_back("obstacle[].angle");
   keys.push_back("obstacle[].axis");
+  keys.push_back("obstacle[].spin");
   keys.push_back("obstacle[].until");
   return keys;
 }

@@ -133,6 +133,9 @@ std::string obstacle_lines(const ObstacleConfig& o, int d) {
     out += fmt::format("angle = {}\n", num(o.angle_degrees));
     if (d == 3) out += fmt::format("axis = {}\n", vecf(o.axis, 3));
   }
+  if (o.spin[0] != 0.0 || o.spin[1] != 0.0 || o.spin[2] != 0.0)
+    out += d == 2 ? fmt::format("spin = {}\n", num(o.spin[2]))
+                  : fmt::format("spin = {}\n", vecf(o.spin, 3));
   if (std::isfinite(o.until)) out += fmt::format("until = {}\n", num(o.until));
   return out;
 }
