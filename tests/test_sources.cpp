@@ -304,7 +304,8 @@ TEST(Sources, PolygonSeedsItsShoelaceArea) {
     text += (i ? ", [" : "[") + std::to_string(a[0]) + ", " + std::to_string(a[1]) + "]";
   }
   const Particles<2> p = seeded<2>(text + "]\n");
-  const double expected = std::abs(twice_area) / 2 / (0.005 * 0.005);  // h = 0.01, 2 per cell
+  const double s = 0.01 / 3;  // h = 0.01, the 2D default of 3 per cell and axis
+  const double expected = std::abs(twice_area) / 2 / (s * s);
   std::cout << "polygon: " << p.size() << " particles, " << expected << " expected\n";
   EXPECT_NEAR(p.size(), expected, 0.03 * expected);
   for (const Vec<2>& x : p.position) ASSERT_TRUE(in_polygon(v, x[0], x[1])) << x.transpose();
@@ -387,7 +388,8 @@ TEST(Sources, SeedingSkipsTheInsideOfObstacles2D) {
   ASSERT_EQ(holed.size(), outside.size());
   for (std::size_t k = 0; k < outside.size(); ++k)
     ASSERT_TRUE(holed.position[k] == outside[k]) << k;
-  const double hole = kPi * 0.1 * 0.1 / (0.005 * 0.005);
+  const double s = 0.01 / 3;  // the 2D default spacing
+  const double hole = kPi * 0.1 * 0.1 / (s * s);
   EXPECT_NEAR(double(all.size() - holed.size()), hole, 0.02 * hole);
 }
 
