@@ -120,8 +120,9 @@ void Simulation<D>::transfer_to_grid(double dt) {
             .push_back({node, n, which});
       }
     // A rigid body meets walls and other solids by points: a ball by its
-    // centre, reaching its radius further, a box by its corners (docs/
-    // scenes.md, "Rigid bodies"). Such a point within a cell of one of the
+    // centre, reaching its radius further, a box or polygon by its corners,
+    // a mesh by its vertices (docs/scenes.md, "Rigid boxes, polygons and
+    // meshes"). Such a point within a cell of one of the
     // box's walls gets a row against it: on the ghost node just outside the
     // wall nearest the point, whose velocity and inverse mass are zero, so
     // that the row sees the body alone. Its normal points from the body to
@@ -252,8 +253,10 @@ void Simulation<D>::transfer_to_grid(double dt) {
             body_contacts.push_back(c);
           }
       // Against the other obstacles and bodies, each pair of bodies once: a
-      // ball's centre against the other's distance, a box's corners against
-      // a fixed solid's or another box's, and each box's against the other's.
+      // ball's centre against the other's distance, a box's, polygon's or
+      // mesh's points against a fixed solid's distance (and the solid's
+      // corners against the body's), and two such bodies each one's points
+      // against the other's distance.
       for (std::size_t m = 0; m < obstacles.size(); ++m) {
         const Obstacle<D>& q = obstacles[m];
         if (m == k || (q.dynamic && m < k)) continue;
