@@ -1,17 +1,16 @@
 // `sablier check` (validate and summarise a scene) and `sablier info`.
+#include <fmt/format.h>
 #include <omp.h>
+#include <png.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include <png.h>
-#include <zlib.h>
-#include <fmt/format.h>
-
 #include "commands.hpp"
 #include "physics/emission.hpp"
-#include "physics/simulation.hpp"
 #include "physics/obstacle.hpp"
+#include "physics/simulation.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_obstacles.hpp"
 
@@ -93,9 +92,10 @@ void print_obstacles(const SceneConfig& s) {
                         : d == 2     ? make_obstacle<2>(o).mass
                                      : make_obstacle<3>(o).mass;
     const std::string body =
-        o.dynamic() ? fmt::format(", rigid body of density {:.6g} kg/m^3 ({:.6g} {}) starting at "
-                                  "{} m/s",
-                                  o.density, mass, d == 2 ? "kg/m" : "kg", point(o.velocity, d))
+        o.dynamic() ? fmt::format(
+                          ", rigid body of density {:.6g} kg/m^3 ({:.6g} {}) starting at "
+                          "{} m/s",
+                          o.density, mass, d == 2 ? "kg/m" : "kg", point(o.velocity, d))
                     : "";
     const std::string gone =
         std::isfinite(o.until) ? fmt::format(", taken away at {:.6g} s", o.until) : "";

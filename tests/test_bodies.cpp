@@ -263,8 +263,9 @@ void ball_rolls(SceneConfig s, double k, double backspin = 0.0) {
   const Obstacle<D>& b = sim.obstacles()[0];
   const double spin = D == 2 ? b.spin[0] : b.spin[1];  // about z (2D) or y (3D)
   const double expected = rolling_fraction * v0;
-  std::cout << D << "D ball on a rough floor, backspin " << backspin << ": speed " << b.velocity[0] << " m/s against "
-            << expected << ", spin " << spin << " rad/s, height " << b.a[D - 1] << " m\n";
+  std::cout << D << "D ball on a rough floor, backspin " << backspin << ": speed " << b.velocity[0]
+            << " m/s against " << expected << ", spin " << spin << " rad/s, height " << b.a[D - 1]
+            << " m\n";
   EXPECT_NEAR(b.velocity[0], expected, 1e-6);
   // Rolling: the contact point is still, v + omega x (-r e_up) = 0.
   EXPECT_NEAR(D == 2 ? -spin * r : spin * r, expected, 1e-6);

@@ -277,8 +277,7 @@ std::vector<BadScene> obstacle_errors() {
       {"obstacle moving box", with(box + "max = [0.6, 0.2]\nvelocity = [0.1, 0]\n"),
        "bad.toml:13: obstacle[0].velocity: a fixed box cannot move", "velocity on planes only"},
       {"obstacle angle on a fixed box", with(box + "max = [0.6, 0.2]\nangle = 30\n"),
-       "bad.toml:13: obstacle[0].angle: only a rigid body turns",
-       "on an obstacle with a density"},
+       "bad.toml:13: obstacle[0].angle: only a rigid body turns", "on an obstacle with a density"},
       {"obstacle spin on a fixed disk", with(disk + "radius = 0.1\nspin = 3\n"),
        "bad.toml:13: obstacle[0].spin: only a rigid body turns", "angle, spin"},
       {"obstacle spin vector in 2D", with(disk + "radius = 0.1\ndensity = 500\nspin = [0, 0, 3]\n"),
@@ -348,8 +347,9 @@ std::vector<BadScene> obstacle_errors() {
        "bad.toml:13: obstacle[0].density: a plane cannot be a rigid body",
        "density on a disk, box or polygon"},
       {"obstacle cylinder with a density",
-       kBase3D + block + "\"cylinder\"\ncenter = [0.2, 0.1, 0.0]\nradius = 0.02\nheight = "
-                         "0.05\ndensity = 2500\n",
+       kBase3D + block +
+           "\"cylinder\"\ncenter = [0.2, 0.1, 0.0]\nradius = 0.02\nheight = "
+           "0.05\ndensity = 2500\n",
        "bad.toml:15: obstacle[0].density: a cylinder cannot be a rigid body",
        "density on a sphere, box or mesh"},
       {"obstacle rigid polygon crossing itself",

@@ -117,7 +117,8 @@ TEST(ShapedBodies, TriangleSlidesDownAPolygonRampAtCoulombsRate) {
   // The triangle laid on the ramp: corners along and across the slope.
   const double s = std::sin(theta), c = std::cos(theta), x0 = 0.2, lift = 1e-4;
   const auto corner = [&](double along, double up) {
-    return "[" + num(x0 + along * c + (up + lift) * s) + ", " + num(y(x0) - along * s + (up + lift) * c) + "]";
+    return "[" + num(x0 + along * c + (up + lift) * s) + ", " +
+           num(y(x0) - along * s + (up + lift) * c) + "]";
   };
   const std::string text =
       "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [1.0, 0.5]\n"
@@ -148,22 +149,24 @@ TEST(ShapedBodies, MeshBoxSlidesOnATiltedFloorAtCoulombsRate) {
       Eigen::AngleAxisd(kPi / 6.0, Eigen::Vector3d(1, 1, 1).normalized()).toRotationMatrix();
   TriangleMesh block = test::box_mesh({-0.1, -0.05, -0.025}, {0.1, 0.05, 0.025});
   for (Point3& p : block.vertices) {
-    const Eigen::Vector3d x = R * Eigen::Vector3d(p[0], p[1], p[2]) + Eigen::Vector3d(0.15, 0.15, 0.0251);
+    const Eigen::Vector3d x =
+        R * Eigen::Vector3d(p[0], p[1], p[2]) + Eigen::Vector3d(0.15, 0.15, 0.0251);
     p = {x[0], x[1], x[2]};
   }
   test::write_obj(obj, {block});
-  const std::string text = "dimension = 3\ngravity = [" + num(9.81 * std::sin(theta)) +
-                           ", 0.0, " + num(-9.81 * std::cos(theta)) +
+  const std::string text = "dimension = 3\ngravity = [" + num(9.81 * std::sin(theta)) + ", 0.0, " +
+                           num(-9.81 * std::cos(theta)) +
                            "]\n[grid]\nsize = [0.6, 0.3, 0.3]\nresolution = [30, 15, 15]\n"
                            "[boundary]\ndefault = \"stick\"\n[[obstacle]]\nshape = \"mesh\"\n"
-                           "file = \"" + obj.string() +
+                           "file = \"" +
+                           obj.string() +
                            "\"\ndensity = 1000\nangle = -30\naxis = [1, 1, 1]\nmu = " + num(mu) +
                            "\n" + kSpeck3D;
   const SceneConfig scene = parse_scene(text, "floor.toml");
   fs::remove_all(dir);
   Simulation<3> sim(scene);
   const Obstacle<3>& body = sim.obstacles()[0];
-  EXPECT_NEAR(body.mass, 1000.0 * 0.2 * 0.1 * 0.05, 1e-5);  // the OBJ file's 6 digits
+  EXPECT_NEAR(body.mass, 1000.0 * 0.2 * 0.1 * 0.05, 1e-5);             // the OBJ file's 6 digits
   EXPECT_GT(std::abs(body.inertia(0, 1)), 1e-6 * body.inertia(0, 0));  // not diagonal
   double spin = 0.0;
   const double a = acceleration(sim, 0, &spin);
@@ -185,7 +188,8 @@ TEST(ShapedBodies, FreeRotationOfAMeshKeepsAngularMomentum) {
       Eigen::AngleAxisd(kPi / 6.0, Eigen::Vector3d(1, 1, 1).normalized()).toRotationMatrix();
   TriangleMesh block = test::box_mesh({-0.08, -0.05, -0.03}, {0.08, 0.05, 0.03});
   for (Point3& p : block.vertices) {
-    const Eigen::Vector3d x = R * Eigen::Vector3d(p[0], p[1], p[2]) + Eigen::Vector3d(0.3, 0.15, 0.15);
+    const Eigen::Vector3d x =
+        R * Eigen::Vector3d(p[0], p[1], p[2]) + Eigen::Vector3d(0.3, 0.15, 0.15);
     p = {x[0], x[1], x[2]};
   }
   test::write_obj(obj, {block});
@@ -204,7 +208,8 @@ TEST(ShapedBodies, FreeRotationOfAMeshKeepsAngularMomentum) {
     return Vec<3>(body.rotation * body.inertia * body.rotation.transpose() * body.spin);
   };
   const auto energy = [&] {
-    return 0.5 * body.spin.dot(body.rotation * body.inertia * body.rotation.transpose() * body.spin);
+    return 0.5 *
+           body.spin.dot(body.rotation * body.inertia * body.rotation.transpose() * body.spin);
   };
   const Vec<3> L0 = momentum();
   const double E0 = energy();
@@ -212,8 +217,9 @@ TEST(ShapedBodies, FreeRotationOfAMeshKeepsAngularMomentum) {
   const Vec<3> L1 = momentum();
   const double E1 = energy();
   std::cout << "mesh free rotation, 1 s: |L| " << L0.norm() << " -> " << L1.norm()
-            << ", direction off by " << std::acos(std::min(1.0, L0.normalized().dot(L1.normalized())))
-            << " rad; energy " << E0 << " -> " << E1 << " J\n";
+            << ", direction off by "
+            << std::acos(std::min(1.0, L0.normalized().dot(L1.normalized()))) << " rad; energy "
+            << E0 << " -> " << E1 << " J\n";
   EXPECT_NEAR(L1.norm() / L0.norm(), 1.0, 1e-3);
   EXPECT_NEAR(E1 / E0, 1.0, 1e-3);
 }

@@ -74,8 +74,7 @@ inline MassProperties mesh_mass_properties(const TriangleMesh& mesh) {
   for (int k = 0; k < 3; ++k) m.centroid[k] = c[k] / volume;
   m.measure = sign * volume;
   for (int r = 0; r < 3; ++r)
-    for (int q = 0; q < 3; ++q)
-      C[r][q] = sign * (C[r][q] - volume * m.centroid[r] * m.centroid[q]);
+    for (int q = 0; q < 3; ++q) C[r][q] = sign * (C[r][q] - volume * m.centroid[r] * m.centroid[q]);
   const double trace = C[0][0] + C[1][1] + C[2][2];
   for (int r = 0; r < 3; ++r)
     for (int q = 0; q < 3; ++q) m.inertia[r][q] = (r == q ? trace : 0.0) - C[r][q];

@@ -73,9 +73,12 @@ inline void set_orientation(Obstacle<D>& o) {
 template <int D>
 inline double bounding_radius(const Obstacle<D>& o) {
   switch (o.shape) {
-    case ObstacleShape::Box: return o.b.norm();
-    case ObstacleShape::Ball: return o.radius;
-    default: return o.extent;
+    case ObstacleShape::Box:
+      return o.b.norm();
+    case ObstacleShape::Ball:
+      return o.radius;
+    default:
+      return o.extent;
   }
 }
 
