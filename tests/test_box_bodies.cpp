@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include "body_fixtures.hpp"
 #include "physics/obstacle.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
@@ -17,31 +18,10 @@ namespace sablier {
 namespace {
 
 using test::kPi;
+using test::kSpeck2D;
+using test::kSpeck3D;
+using test::num;
 using test::run_until;
-
-std::string num(double x) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
-}
-
-// A grain of sand far from everything: a scene needs one [[sand]] block.
-const std::string kSpeck2D = "[[sand]]\nshape = \"box\"\nmin = [0.9, 0.4]\nmax = [0.95, 0.45]\n";
-const std::string kSpeck3D =
-    "[[sand]]\nshape = \"box\"\nmin = [0.5, 0.0, 0.25]\nmax = [0.55, 0.05, 0.3]\n";
-
-// The acceleration of body k along its velocity between 0.1 and 0.25 s, and
-// the largest spin seen at those two times.
-template <int D>
-double sliding_acceleration(Simulation<D>& sim, std::size_t k, double* spin) {
-  run_until(sim, 0.1);
-  const double v1 = sim.obstacles()[k].velocity.norm(), t1 = sim.time();
-  *spin = sim.obstacles()[k].spin.norm();
-  run_until(sim, 0.25);
-  const double v2 = sim.obstacles()[k].velocity.norm(), t2 = sim.time();
-  *spin = std::max(*spin, sim.obstacles()[k].spin.norm());
-  return (v2 - v1) / (t2 - t1);
-}
 
 // A box (20 x 5 cm, 1 t/m^2) laid flat on a rough polygon ramp at theta =
 // 30 degrees, Coulomb mu = 0.3 between them: a rigid block on an incline
@@ -63,7 +43,7 @@ double box_on_polygon_ramp(double mu, double* spin, double* angle_drift) {
       "]\nmax = [" + num(cx + 0.5 * w) + ", " + num(cy + 0.5 * t) +
       "]\ndensity = 1000\nangle = -30\nmu = " + num(mu) + "\n" + kSpeck2D;
   Simulation<2> sim(parse_scene(text, "ramp.toml"));
-  const double a = sliding_acceleration(sim, 1, spin);
+  const double a = test::body_acceleration(sim, 1, spin);
   *angle_drift = std::abs(sim.obstacles()[1].angle + theta);
   return a;
 }
@@ -99,7 +79,7 @@ TEST(BoxBodies, BoxSlidesOnATiltedFloorAtCoulombsRate3D) {
                            num(mu) + "\n" + kSpeck3D;
   Simulation<3> sim(parse_scene(text, "floor.toml"));
   double spin = 0.0;
-  const double a = sliding_acceleration(sim, 0, &spin);
+  const double a = test::body_acceleration(sim, 0, &spin);
   const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
   const auto& q = sim.obstacles()[0].quaternion;
   std::cout << "3D box on a floor tilted 25 degrees, mu 0.2: " << a << " m/s^2 against Coulomb's "

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include "body_fixtures.hpp"
 #include "core/mass_properties.hpp"
 #include "mesh_fixtures.hpp"
 #include "physics/obstacle.hpp"
@@ -20,17 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::kPi;
+using test::kSpeck2D;
+using test::kSpeck3D;
+using test::num;
 using test::run_until;
-
-std::string num(double x) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
-}
-
-const std::string kSpeck2D = "[[sand]]\nshape = \"box\"\nmin = [0.9, 0.4]\nmax = [0.95, 0.45]\n";
-const std::string kSpeck3D =
-    "[[sand]]\nshape = \"box\"\nmin = [0.5, 0.0, 0.25]\nmax = [0.55, 0.05, 0.3]\n";
 
 // Sources: the unit square, and an L of two rectangles by the parallel-axis
 // theorem (area 3, centroid (5/6, 5/6), polar moment 11/6 about it);
@@ -96,18 +90,6 @@ TEST(MassProperties, Meshes) {
   }
 }
 
-// The acceleration of body k between 0.1 and 0.25 s, and its spin then.
-template <int D>
-double acceleration(Simulation<D>& sim, std::size_t k, double* spin) {
-  run_until(sim, 0.1);
-  const double v1 = sim.obstacles()[k].velocity.norm(), t1 = sim.time();
-  *spin = sim.obstacles()[k].spin.norm();
-  run_until(sim, 0.25);
-  const double v2 = sim.obstacles()[k].velocity.norm(), t2 = sim.time();
-  *spin = std::max(*spin, sim.obstacles()[k].spin.norm());
-  return (v2 - v1) / (t2 - t1);
-}
-
 // A rigid triangle (legs 20 and 6 cm) lying on its long leg on a rough
 // polygon ramp at 30 degrees, mu = 0.3: any rigid block that does not tip
 // slides at g (sin theta - mu cos theta), without turning.
@@ -128,7 +110,7 @@ TEST(ShapedBodies, TriangleSlidesDownAPolygonRampAtCoulombsRate) {
       ", " + corner(0, 0.06) + "]\ndensity = 1000\nmu = " + num(mu) + "\n" + kSpeck2D;
   Simulation<2> sim(parse_scene(text, "ramp.toml"));
   double spin = 0.0;
-  const double a = acceleration(sim, 1, &spin);
+  const double a = test::body_acceleration(sim, 1, &spin);
   const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
   std::cout << "2D triangle on a 30-degree ramp, mu 0.3: " << a << " m/s^2 against Coulomb's "
             << expected << " (relative difference " << a / expected - 1.0 << "); spin " << spin
@@ -169,7 +151,7 @@ TEST(ShapedBodies, MeshBoxSlidesOnATiltedFloorAtCoulombsRate) {
   EXPECT_NEAR(body.mass, 1000.0 * 0.2 * 0.1 * 0.05, 1e-5);             // the OBJ file's 6 digits
   EXPECT_GT(std::abs(body.inertia(0, 1)), 1e-6 * body.inertia(0, 0));  // not diagonal
   double spin = 0.0;
-  const double a = acceleration(sim, 0, &spin);
+  const double a = test::body_acceleration(sim, 0, &spin);
   const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
   std::cout << "3D mesh box on a floor tilted 25 degrees, mu 0.2: " << a
             << " m/s^2 against Coulomb's " << expected << " (relative difference "
