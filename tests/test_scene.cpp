@@ -33,7 +33,6 @@ TEST(SceneFile, Defaults2D) {
   e.resolution = {40, 20, 1};
   e.gravity = v(0, -9.81);
   e.sand = {SandConfig{SandShape::Box, v(0, 0), v(0.2, 0.4)}};
-  e.sand[0].particles_per_cell = 3;  // the 2D default (default_particles_per_cell)
   const SceneConfig s = parse_scene(kBase2D, "good.toml");
   EXPECT_EQ(s.source, "good.toml");
   EXPECT_DOUBLE_EQ(s.cell_size(), 0.025);

@@ -124,10 +124,11 @@ resolution = [20, 20, 20]
 std::string mesh_scene(const fs::path& file, double scale, const std::string& extra = "") {
   return kBox3D + "[[sand]]\nshape = \"mesh\"\nfile = \"" + file.string() +
          "\"\nscale = " + std::to_string(scale) +
-         "\ntranslate = [0.1234, 0.1111, 0.1357]\njitter = 0.5\n" + extra;
+         "\ntranslate = [0.1234, 0.1111, 0.1357]\njitter = 0.5\nparticles_per_cell = 2\n" + extra;
 }
 
-// Particles of a scene; spacing 0.01 m (h = 0.02, 2 per cell).
+// Particles of a scene; spacing 0.01 m (h = 0.02, 2 per cell and axis, which the
+// 3D scenes below set).
 template <int D>
 Particles<D> seeded(const std::string& text) {
   return seed_particles<D>(parse_scene(text, "good.toml"));
@@ -269,7 +270,7 @@ TEST(Sources, SphereSeedsItsVolume) {
   const double r = 0.1;
   const Particles<3> p = seeded<3>(kBox3D +
                                    "[[sand]]\nshape = \"sphere\"\ncenter = [0.2, 0.21, 0.19]\n"
-                                   "radius = 0.1\njitter = 0.5\n");
+                                   "radius = 0.1\njitter = 0.5\nparticles_per_cell = 2\n");
   const double expected = lattice_count(4.0 / 3.0 * kPi * r * r * r);
   std::cout << "sphere: " << p.size() << " particles, " << expected << " expected\n";
   EXPECT_NEAR(p.size(), expected, 0.02 * expected);
@@ -400,6 +401,7 @@ TEST(Sources, SeedingSkipsTheInsideOfObstacles3D) {
 shape = "box"
 min = [0, 0, 0]
 max = [0.2, 0.2, 0.2]
+particles_per_cell = 2
 [[obstacle]]
 shape = "plane"
 point = [0, 0, 0.03]

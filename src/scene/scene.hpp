@@ -105,6 +105,14 @@ enum class SandShape { Box, Cylinder, Sphere, Polygon, Mesh };
 
 class SolidMesh;  // core/mesh.hpp
 
+// Particles per cell and axis when a [[sand]] or [[spout]] block does not
+// say: 3 (9 per cell in 2D, 27 in 3D). Fewer grains per cell let the sand
+// over-compact, the more so on finer grids: the 2D collapse with 2 per
+// axis rests at median phi 0.65 at 1 cm cells and 0.89 at 5 mm, against
+// 0.62 with 3 at 5 mm; the 3D collapse with 2 at 0.613 (12.5 mm cells) and
+// 0.624 (8.3 mm), with 3 at 0.603 and 0.606 (docs/method.md).
+constexpr int kDefaultParticlesPerCell = 3;
+
 struct SandConfig {
   SandShape shape = SandShape::Box;
   Vec3d min{0, 0, 0};     // box
@@ -112,7 +120,7 @@ struct SandConfig {
   Vec3d center{0, 0, 0};  // cylinder / disk: centre of the base (3D, axis along z) or of the disk (2D)
   double radius = 0.0;    // cylinder / disk
   double height = 0.0;    // cylinder (3D only)
-  int particles_per_cell = 2;  // per axis
+  int particles_per_cell = kDefaultParticlesPerCell;  // per axis
   double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
   Vec3d velocity{0, 0, 0};     // initial velocity, m/s
   SandMaterial material{};     // overrides of [material] for this block's grains
@@ -138,7 +146,7 @@ struct SpoutConfig {
   Vec3d velocity{0, 0, 0};  // m/s, nonzero
   double start = 0.0;       // s
   double stop = std::numeric_limits<double>::infinity();  // s; infinity = never
-  int particles_per_cell = 2;  // per axis
+  int particles_per_cell = kDefaultParticlesPerCell;  // per axis
   double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
 };
 
@@ -206,13 +214,6 @@ struct ObstacleConfig {
 // section 3); ours, a Coulomb cone on the traction (docs/method.md,
 // "Frictional obstacles"), gives it for any mu >= 0.
 constexpr double kMaxObstacleMu = 5.0;
-
-// Particles per cell and axis when a [[sand]] or [[spout]] block does not
-// say: 3 in 2D (9 per cell), 2 in 3D (8 per cell). Fewer grains per cell
-// let the sand over-compact, the more so on finer grids (2D collapse, 2
-// per axis: median phi 0.65 at 1 cm cells, 0.89 at 5 mm, against 0.62 with
-// 3 at 5 mm; docs/method.md).
-constexpr int default_particles_per_cell(int dimension) { return dimension == 2 ? 3 : 2; }
 
 struct SceneConfig {
   std::string source;  // file name, for messages

@@ -318,7 +318,6 @@ SandConfig read_sand(TableReader t, const SceneConfig& s) {
   } else {
     read_source_shape(t, shape, c, s);  // scene_sources.cpp
   }
-  c.particles_per_cell = default_particles_per_cell(d);
   read_fields(t, c, kSandFields, false);
   c.velocity = t.vector("velocity", d, c.velocity, Range());
   c.material = read_sand_material(t, s);
