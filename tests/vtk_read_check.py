@@ -26,9 +26,10 @@ except ImportError as error:
              "install python3-vtk9 (bash scripts/setup.sh does)")
 
 # 64 x 32 cells of 1/64 m, sand filling the box at 2 x 2 particles per
-# cell: 8192 particles, so that 3-component Float64 arrays fill exactly
-# three 64 KiB zlib blocks (the header's "last block size" is then 0) and
-# the 9-component stress spans nine.
+# cell (set here: bed2d.toml seeds 3 per axis): 8192 particles, so that
+# 3-component Float64 arrays fill exactly three 64 KiB zlib blocks (the
+# header's "last block size" is then 0) and the 9-component stress spans
+# nine.
 CELLS = (64, 32)
 H = 1.0 / 64
 PARTICLES = 8192
@@ -58,7 +59,8 @@ def run(sablier, scenes, out, extra):
     shutil.rmtree(out, ignore_errors=True)
     cmd = [sablier, "run", os.path.join(scenes, "bed2d.toml"), "--out", out,
            "--set", "time.frames=2", "--set", f"grid.resolution=[{CELLS[0]},{CELLS[1]}]",
-           "--set", "sand.0.max=[1.0,0.5]", "--format", "vtp,csv", "--grid",
+           "--set", "sand.0.max=[1.0,0.5]", "--set", "sand.0.particles_per_cell=2",
+           "--format", "vtp,csv", "--grid",
            "--threads", "1", "--quiet"] + extra
     result = subprocess.run(cmd, capture_output=True, text=True)
     check(result.returncode == 0, f"{' '.join(cmd)} exited {result.returncode}:\n{result.stderr}")
