@@ -121,8 +121,9 @@ double check_energy_bound(const SceneConfig& s, double duration) {
     const double e = sim.kinetic_energy() + sim.potential_energy();
     const double correction = g * info.dt + std::sqrt(2.0 * sim.kinetic_energy() / mass) +
                               std::sqrt(2.0 * kinetic / mass);  // bounds |u - u_f|_M / sqrt(m)
-    const double slack = 10 * s.solver.tolerance * (kinetic + affine + mass * g * info.dt * correction) +
-                         1e-12 * std::abs(e);
+    const double slack =
+        10 * s.solver.tolerance * (kinetic + affine + mass * g * info.dt * correction) +
+        1e-12 * std::abs(e);
     const double bound = e_prev + affine + info.restoring_work;
     worst = std::max(worst, (e - bound) / std::abs(e0));
     restoring += info.restoring_work;

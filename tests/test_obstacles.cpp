@@ -82,11 +82,12 @@ TEST(Obstacles, BedRestsOnAPlane2D) {
   for (int per_axis : {2, 3}) {
     for (double level : {0.041, 0.045, 0.049}) {
       SCOPED_TRACE(std::to_string(per_axis) + " per axis, plane at " + std::to_string(level));
-      bed_on_plane<2>(scene("bed2d.toml", {"grid.size=[0.4,0.3]", "grid.resolution=[40,30]",
-                                           "sand.0.min=[0.0," + std::to_string(level) + "]",
-                                           "sand.0.max=[0.4,0.145]",
-                                           "sand.0.particles_per_cell=" + std::to_string(per_axis)}),
-                      level, per_axis == 2 ? 1.0 : 1.0 / 60);
+      bed_on_plane<2>(
+          scene("bed2d.toml",
+                {"grid.size=[0.4,0.3]", "grid.resolution=[40,30]",
+                 "sand.0.min=[0.0," + std::to_string(level) + "]", "sand.0.max=[0.4,0.145]",
+                 "sand.0.particles_per_cell=" + std::to_string(per_axis)}),
+          level, per_axis == 2 ? 1.0 : 1.0 / 60);
     }
   }
 }

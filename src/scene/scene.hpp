@@ -146,7 +146,7 @@ struct SpoutConfig {
   Vec3d velocity{0, 0, 0};  // m/s, nonzero
   double start = 0.0;       // s
   double stop = std::numeric_limits<double>::infinity();  // s; infinity = never
-  int particles_per_cell = kDefaultParticlesPerCell;  // per axis
+  int particles_per_cell = kDefaultParticlesPerCell;      // per axis
   double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
 };
 
