@@ -271,11 +271,11 @@ def silo(args):
                 vp, t0, t1 = (0.01 / 4) ** 2 * PHI_MAX, 0.2, 0.6
             else:
                 sets = ["grid.size=[0.3,0.3,0.2025]", "grid.resolution=[40,40,27]",
-                        "sand.0.max=[0.3,0.3,0.15]", "solver.tolerance=1e-4",
-                        "solver.max_iterations=500",
+                        "sand.0.max=[0.3,0.3,0.15]", "sand.0.particles_per_cell=2",
+                        "solver.tolerance=1e-4", "solver.max_iterations=500",
                         f"boundary.opening.0.min=[{lo(0.15, -1)},{lo(0.15, -1)},0.0]",
                         f"boundary.opening.0.max=[{lo(0.15, 1)},{lo(0.15, 1)},0.0]", "time.frames=12"]
-                vp, t0, t1 = (h / 2) ** 3 * PHI_MAX, 0.1, 0.4
+                vp, t0, t1 = (h / 2) ** 3 * PHI_MAX, 0.1, 0.4  # 2 grains per cell and axis, as the tests
             st = stats(run(args, f"beverloo{dim}d_{n}", f"silo{dim}d", sets))
             sel = (st["time"] >= t0 - 1e-9) & (st["time"] <= t1 + 1e-9)
             q = -np.polyfit(st["time"][sel], st["particles"][sel] * vp * RHO, 1)[0]
