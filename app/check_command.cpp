@@ -19,11 +19,16 @@ namespace {
 
 const char* shape_name(SandShape shape, int d) {
   switch (shape) {
-    case SandShape::Box: return "box";
-    case SandShape::Cylinder: return d == 2 ? "disk" : "cylinder";
-    case SandShape::Sphere: return "sphere";
-    case SandShape::Polygon: return "polygon";
-    case SandShape::Mesh: return "mesh";
+    case SandShape::Box:
+      return "box";
+    case SandShape::Cylinder:
+      return d == 2 ? "disk" : "cylinder";
+    case SandShape::Sphere:
+      return "sphere";
+    case SandShape::Polygon:
+      return "polygon";
+    case SandShape::Mesh:
+      return "mesh";
   }
   return "";
 }
@@ -40,11 +45,12 @@ void print_sources(const SceneConfig& s, const std::vector<std::size_t>& counts)
     const double spacing = spout_spacing(s, sp);
     const std::size_t layer = spout_layer_size(s.dimension, sp.radius, spacing);
     const std::int64_t layers = spout_layers(sp, spacing, end);
-    std::printf("  spout[%zu] rate %.6g %s (rho phi_max |v| A; %.6g as emitted, %zu particles "
-                "per layer), from t = %g s to %s: %lld particles by the end\n",
-                k, spout_nominal_rate(s, sp), unit, spout_lattice_rate(s, sp), layer, sp.start,
-                std::isfinite(sp.stop) ? fmt::format("{} s", sp.stop).c_str() : "the end",
-                static_cast<long long>(layers * static_cast<std::int64_t>(layer)));
+    std::printf(
+        "  spout[%zu] rate %.6g %s (rho phi_max |v| A; %.6g as emitted, %zu particles "
+        "per layer), from t = %g s to %s: %lld particles by the end\n",
+        k, spout_nominal_rate(s, sp), unit, spout_lattice_rate(s, sp), layer, sp.start,
+        std::isfinite(sp.stop) ? fmt::format("{} s", sp.stop).c_str() : "the end",
+        static_cast<long long>(layers * static_cast<std::int64_t>(layer)));
   }
 }
 
@@ -137,7 +143,10 @@ void print_summary(const SceneConfig& s) {
           ? fmt::format("grains of over-full nodes moved apart {} times per step",
                         v.decompaction_moves)
       : v.decompaction == Decompaction::Push ? std::string("over-full nodes pushed apart")
-                                             : std::string("over-full nodes clamped only");
+      : v.decompaction == Decompaction::Project
+          ? fmt::format("grains of over-full nodes projected apart in at most {} rounds per step",
+                        v.decompaction_moves)
+          : std::string("over-full nodes clamped only");
   std::printf("solver     tolerance %g, at most %d sweeps, Anderson depth %d; %s\n", v.tolerance,
               v.max_iterations, v.anderson, rule.c_str());
   // Dense node fields (velocity, inverse mass, mask, momentum, warm start, mass,

@@ -22,7 +22,63 @@ namespace sablier {
 
 namespace {
 constexpr double kMoveRate = 0.3;
+
+// Calls add(p, mask) for each grain p with a cell (base[p] >= 0) whose
+// cell has corners in the calling thread's layers along the last axis, mask
+// the bits of those corners. Each thread scans the grains in order, so each
+// node adds up its grains in particle order whatever the thread count.
+template <int D, class Add>
+void scatter_by_layers(const std::vector<std::int64_t>& base, std::int64_t top_stride,
+                       std::int64_t layers, Add add) {
+  constexpr int NC = ipow(2, D);
+  const std::int64_t n = static_cast<std::int64_t>(base.size());
+#pragma omp parallel
+  {
+    const std::int64_t team = omp_get_num_threads(), me = omp_get_thread_num();
+    const std::int64_t lo = layers * me / team, hi = layers * (me + 1) / team;
+    for (std::int64_t p = 0; p < n; ++p) {
+      const std::int64_t b = base[p];
+      const std::int64_t layer = b / top_stride;  // the cell's nodes: this layer and the next
+      if (b < 0 || layer + 1 < lo || layer >= hi) continue;
+      unsigned mask = 0;
+      for (int a = 0; a < NC; ++a) {
+        const std::int64_t l = layer + ((a >> (D - 1)) & 1);
+        if (l >= lo && l < hi) mask |= 1u << a;
+      }
+      add(p, mask);
+    }
+  }
+}
+
 }  // namespace
+
+template <int D>
+void Simulation<D>::grain_volume_at_positions() {
+  constexpr int NC = ipow(2, D);
+  const auto corner = grid_.corner_offsets();
+  const double h = grid_.h();
+  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+  Vec<D> upper;
+  for (int a = 0; a < D; ++a) upper[a] = grid_.cells()[a] * h;
+  move_base_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    const Vec<D>& x = particles_.position[p];  // leaving through a free face: -1
+    bool inside = true;
+    for (int a = 0; a < D; ++a) inside = inside && x[a] > 0.0 && x[a] < upper[a];
+    move_base_[p] = inside ? grid_.cell_base_node(grid_.cell_of(x)) : -1;
+  }
+  move_excess_.assign(grid_.node_count(), 0.0);
+  const std::int64_t top_stride = grid_.node_stride(D - 1);
+  scatter_by_layers<D>(move_base_, top_stride, grid_.node_count() / top_stride,
+                       [&](std::int64_t p, unsigned mask) {
+                         std::int64_t base = 0;
+                         const Q1Stencil<D> s = stencil_at(particles_.position[p], &base);
+                         for (int a = 0; a < NC; ++a)
+                           if (mask >> a & 1)
+                             move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
+                       });
+}
 
 template <int D>
 double Simulation<D>::move_grains_apart(int moves, double dt) {
@@ -40,38 +96,8 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
     return true;
   };
   move_lift_.assign(n, 0.0);
-  move_excess_.resize(nodes);
-  move_base_.resize(n);
-  // Node index / top_stride: the node's layer along the last axis (+1).
-  const std::int64_t top_stride = grid_.node_stride(D - 1), layers = nodes / top_stride;
   for (int move = 0; move < moves; ++move) {
-    // Phi_i at the grains' present positions. Each node adds up its grains in
-    // particle order, as one thread scattering them would, so the bits do not
-    // depend on the thread count: the grains' cells in parallel, then each
-    // thread scans the grains in order and adds only to the nodes of its own
-    // layers along the last axis.
-#pragma omp parallel for schedule(static)
-    for (std::int64_t p = 0; p < n; ++p) {
-      const Vec<D>& x = particles_.position[p];  // leaving through a free face: -1
-      move_base_[p] = inside(x) ? grid_.cell_base_node(grid_.cell_of(x)) : -1;
-    }
-    std::fill(move_excess_.begin(), move_excess_.end(), 0.0);
-#pragma omp parallel
-    {
-      const std::int64_t team = omp_get_num_threads(), me = omp_get_thread_num();
-      const std::int64_t lo = layers * me / team, hi = layers * (me + 1) / team;
-      for (std::int64_t p = 0; p < n; ++p) {
-        const std::int64_t base = move_base_[p];
-        const std::int64_t layer = base / top_stride;  // the cell's nodes: this layer and the next
-        if (base < 0 || layer + 1 < lo || layer >= hi) continue;
-        std::int64_t again = 0;  // == base
-        const Q1Stencil<D> s = stencil_at(particles_.position[p], &again);
-        for (int a = 0; a < NC; ++a) {
-          const std::int64_t l = layer + ((a >> (D - 1)) & 1);
-          if (l >= lo && l < hi) move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
-        }
-      }
-    }
+    grain_volume_at_positions();
     bool crowded = false;
 #pragma omp parallel for schedule(static) reduction(|| : crowded)
     for (std::int64_t i = 0; i < nodes; ++i) {
@@ -119,7 +145,149 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
   return lift;
 }
 
+// The projection (solver.decompaction = "project"): node potentials q >= 0
+// such that moving every grain by d_p = -sum_k q_k grad N_k(x_p) takes each
+// node's grain volume back to its capacity, to first order: Phi - L q <= C,
+// with complementarity, L_jk = sum_p V_p grad N_j(x_p) . grad N_k(x_p) (the
+// first-order change of Phi_j when the grains move by -grad q), C_j =
+// phi_max V_j (1 - s_j), s_j the solids' share of the node (as the cone
+// problem counts it, build_rows). Solved by projected Gauss-Seidel over the
+// nodes in 2^d colours (coordinate parities: nodes of one colour share no
+// cell, so their updates are independent and the result does not depend on
+// the thread count). Grains are then moved (a grain leaving the box stays
+// inside it, one entering a solid is put back on its surface, as in
+// advection), and the part of a grain's velocity against its move is
+// removed up to |d| / dt, so that the flow does not crowd it back. Each
+// round is linearised at the grains' positions; up to `rounds` rounds, until
+// no node is more than kProjectSlack over its capacity.
+template <int D>
+double Simulation<D>::project_grains_apart(int rounds, double dt) {
+  constexpr int NC = ipow(2, D), NS = ipow(3, D);
+  constexpr double kProjectSlack = 1e-3;  // of phi_max V_j
+  constexpr int kMaxSweeps = 200;
+  const auto corner = grid_.corner_offsets();
+  const auto neighbour = grid_.stencil_offsets();
+  const double h = grid_.h();
+  const auto& cells = grid_.cells();
+  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+  const std::int64_t nodes = grid_.node_count();
+  const std::int64_t top_stride = grid_.node_stride(D - 1);
+  const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
+  // Slot in a node's row of L of corner b seen from corner a of one cell.
+  int slot[NC][NC];
+  for (int a = 0; a < NC; ++a)
+    for (int b = 0; b < NC; ++b) {
+      int k = 0, w = 1;
+      for (int ax = 0; ax < D; ++ax, w *= 3) k += (((b >> ax) & 1) - ((a >> ax) & 1) + 1) * w;
+      slot[a][b] = k;
+    }
+  move_lift_.assign(n, 0.0);
+  project_q_.resize(nodes);
+  project_capacity_.resize(nodes);
+  project_full_.resize(nodes);
+  for (int round = 0; round < rounds; ++round) {
+    grain_volume_at_positions();  // Phi into move_excess_
+    // Capacities, and whether any node is over its own.
+    bool crowded = false;
+#pragma omp parallel for schedule(static) reduction(|| : crowded)
+    for (std::int64_t i = 0; i < nodes; ++i) {
+      project_q_[i] = 0.0;
+      if (!(move_excess_[i] > 0.0)) continue;
+      const auto nc = grid_.node_coords(i);
+      Vec<D> x;
+      for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
+      const double full = phi_max_ * grid_.node_volume(nc);
+      double solid = 0.0;
+      Vec<D> normal;
+      if (!obstacles_end.empty())
+        solid = solid_fraction(obstacle_distance(obstacles_end, x, &normal), h);
+      project_full_[i] = full;
+      project_capacity_[i] = full * (1.0 - solid);
+      crowded = crowded || move_excess_[i] > project_capacity_[i] + kProjectSlack * full;
+    }
+    if (!crowded) break;
+    // L, row by row, each node's row summed in particle order.
+    project_L_.assign(nodes * NS, 0.0);
+    scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
+                         [&](std::int64_t p, unsigned mask) {
+                           std::int64_t base = 0;
+                           const Q1Stencil<D> s = stencil_at(particles_.position[p], &base);
+                           const double v = particles_.volume[p];
+                           for (int a = 0; a < NC; ++a) {
+                             if (!(mask >> a & 1)) continue;
+                             double* row = project_L_.data() + (base + corner[a]) * NS;
+                             for (int b = 0; b < NC; ++b)
+                               row[slot[a][b]] += v * s.grad[a].dot(s.grad[b]);
+                           }
+                         });
+    // The nodes holding grains, by colour, in index order.
+    for (auto& list : project_nodes_) list.clear();
+    for (std::int64_t i = 0; i < nodes; ++i) {
+      if (!(move_excess_[i] > 0.0) || !(project_L_[i * NS + NS / 2] > 0.0)) continue;
+      const auto nc = grid_.node_coords(i);
+      int colour = 0;
+      for (int a = 0; a < D; ++a) colour |= (nc[a] & 1) << a;
+      project_nodes_[colour].push_back(i);
+    }
+    for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+      double worst = 0.0;  // the largest excess over capacity before this sweep's updates
+      for (const auto& list : project_nodes_) {
+        const std::int64_t m = static_cast<std::int64_t>(list.size());
+#pragma omp parallel for schedule(static) reduction(max : worst)
+        for (std::int64_t k = 0; k < m; ++k) {
+          const std::int64_t i = list[k];
+          const double* row = project_L_.data() + i * NS;
+          double lq = 0.0;
+          for (int t = 0; t < NS; ++t) lq += row[t] * project_q_[i + neighbour[t]];
+          const double excess = move_excess_[i] - lq - project_capacity_[i];
+          const double q = std::max(0.0, project_q_[i] + excess / row[NS / 2]);
+          if (q > 0.0 || project_q_[i] > 0.0)
+            worst = std::max(worst, std::abs(excess) / project_full_[i]);
+          project_q_[i] = q;
+        }
+      }
+      if (worst <= kProjectSlack) break;
+    }
+    // Move the grains.
+#pragma omp parallel for schedule(static)
+    for (std::int64_t p = 0; p < n; ++p) {
+      const std::int64_t base = move_base_[p];
+      if (base < 0) continue;
+      bool near = false;  // a corner of its cell has a potential (else the move is zero)
+      for (int a = 0; a < NC; ++a) near = near || project_q_[base + corner[a]] > 0.0;
+      if (!near) continue;
+      Vec<D>& x = particles_.position[p];
+      std::int64_t again = 0;
+      const Q1Stencil<D> s = stencil_at(x, &again);
+      Vec<D> d = Vec<D>::Zero();
+      for (int a = 0; a < NC; ++a) d -= project_q_[base + corner[a]] * s.grad[a];
+      const double len = d.norm();
+      if (len == 0.0) continue;
+      Vec<D> y = x + d;
+      for (int a = 0; a < D; ++a) y[a] = std::clamp(y[a], 1e-6 * h, cells[a] * h - 1e-6 * h);
+      if (!obstacles_end.empty()) {
+        Vec<D> normal;
+        const double dist = obstacle_distance(obstacles_end, y, &normal);
+        if (dist < 0.0) y -= (dist - 1e-6 * h) * normal;
+      }
+      move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(y - x));
+      x = y;
+      Vec<D>& u = particles_.velocity[p];
+      const Vec<D> dir = d / len;
+      const double against = -u.dot(dir);
+      if (against > 0.0) u += std::min(against, len / dt) * dir;
+    }
+  }
+  double lift = 0.0;  // in particle order
+  for (double w : move_lift_) lift += w;
+  return lift;
+}
+
 template double Simulation<2>::move_grains_apart(int, double);
 template double Simulation<3>::move_grains_apart(int, double);
+template double Simulation<2>::project_grains_apart(int, double);
+template double Simulation<3>::project_grains_apart(int, double);
+template void Simulation<2>::grain_volume_at_positions();
+template void Simulation<3>::grain_volume_at_positions();
 
 }  // namespace sablier

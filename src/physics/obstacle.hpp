@@ -30,7 +30,7 @@ struct Obstacle {
   double height = 0.0;
   std::shared_ptr<const SolidPolygon> polygon;   // 2D polygons
   std::shared_ptr<const DistanceGrid> distance;  // 3D meshes
-  double mu = 0.5;  // Coulomb coefficient (scene convention, METHOD.md section 4)
+  double mu = 0.5;                   // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
   double until = 1e300;              // s: taken away from this time on (scene's obstacle[].until)
   bool gone = false;                 // taken away: no longer there at all
@@ -56,6 +56,15 @@ struct Obstacle {
   std::array<double, 4> quaternion{1.0, 0.0, 0.0, 0.0};
   Mat<D> rotation = Mat<D>::Identity();
 };
+
+// Whether a fixed obstacle translates (obstacle[].velocity, other than a
+// plane's along itself, which leaves its solid in place: a conveyor belt).
+template <int D>
+inline bool moves_into_sand(const Obstacle<D>& o) {
+  const double speed = o.velocity.norm();
+  if (o.dynamic || speed == 0.0) return false;
+  return o.shape != ObstacleShape::Plane || std::abs(o.velocity.dot(o.b)) > 1e-12 * speed;
+}
 
 // The rotation of a body's orientation (angle in 2D, quaternion in 3D).
 template <int D>

@@ -286,8 +286,8 @@ int Simulation<D>::unconstrained_velocity(double dt) {
     }
   }
   if (scene_.material.viscosity <= 0.0) return 0;
-  ViscousSystem<D> sys{grid_,          particles_,        cell_start_, cells_by_parity_,
-                       node_mass_,     free_mask_,        rho0_ / dt,  scene_.material.viscosity};
+  ViscousSystem<D> sys{grid_,      particles_, cell_start_, cells_by_parity_,
+                       node_mass_, free_mask_, rho0_ / dt,  scene_.material.viscosity};
   return solve_viscous(sys, P.velocity);
 }
 
@@ -337,6 +337,8 @@ StepInfo Simulation<D>::step(double dt) {
   transfer_to_particles(dt);
   if (scene_.solver.decompaction == Decompaction::Move)
     info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
+  if (scene_.solver.decompaction == Decompaction::Project)
+    info.restoring_work += project_grains_apart(scene_.solver.decompaction_moves, dt);
   info.timings.advection = seconds_since(t0);
 
   info.active_nodes = obstacle_row_start_;  // sand nodes (obstacle rows are extra)
@@ -365,8 +367,10 @@ double Simulation<D>::adaptive_dt(double remaining) const {
   // rigid bodies' surfaces (at most |V| + |omega| r), which must not skip
   // over the grains they meet.
   double v = std::max(max_speed(), open_spout_speed(scene_, time_));
-  for (const Obstacle<D>& o : obstacles_)
+  for (const Obstacle<D>& o : obstacles_) {
     if (o.dynamic) v = std::max(v, o.velocity.norm() + o.spin.norm() * bounding_radius(o));
+    if (moves_into_sand(o)) v = std::max(v, o.velocity.norm());  // a solid driven through
+  }
   const double g = gravity_.norm();
   double dt = remaining;
   if (g > 0.0) {

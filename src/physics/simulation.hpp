@@ -110,7 +110,7 @@ class Simulation {
   double potential_energy() const;  // -sum rho_p V_p g.x_p (zero at the origin)
   double affine_energy() const;     // APIC: 1/2 sum_p rho_p V_p sum_i N_i |B_p (x_i - x_p)|^2
   double max_speed() const;
-  double grain_mass() const;        // sum rho_p V_p
+  double grain_mass() const;  // sum rho_p V_p
 
   // Bulk stress phi lambda of row j, Cartesian tensor (compression positive).
   Mat<D> row_bulk_stress(int j) const;
@@ -145,6 +145,13 @@ class Simulation {
   // after advection (decompaction.cpp); returns the work done against
   // gravity, J (J/m in 2D).
   double move_grains_apart(int moves, double dt);
+  // solver.decompaction = "project": grains moved by the gradient of node
+  // potentials that take every node back to its capacity (decompaction.cpp);
+  // returns the work done against gravity, as move_grains_apart.
+  double project_grains_apart(int rounds, double dt);
+  // Phi_i at the grains' present positions into move_excess_ (and each
+  // grain's cell base node into move_base_, -1 outside the box).
+  void grain_volume_at_positions();
   void emit_from_spouts(double start);  // sources: particles entering during the step
   bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;
   // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
@@ -166,13 +173,13 @@ class Simulation {
   Particles<D> particles_;
   double time_ = 0.0;
   std::int64_t steps_ = 0;
-  double rho0_, phi_max_;  // reference density rho_0 = [material].density (material.hpp)
+  double rho0_, phi_max_;            // reference density rho_0 = [material].density (material.hpp)
   std::vector<Material> materials_;  // one per [[sand]] block, by particles_.material
   Vec<D> gravity_;
 
   // Particles sorted by cell: particles of cell c are [cell_start_[c], cell_start_[c+1]).
   std::vector<std::int64_t> cell_start_;
-  std::vector<std::int64_t> active_cells_;               // sorted
+  std::vector<std::int64_t> active_cells_;  // sorted
   std::array<std::vector<std::int64_t>, ipow(2, D)> cells_by_parity_;
 
   // Dense node fields (ghost-padded).
@@ -181,15 +188,20 @@ class Simulation {
   // Mass in units of rho_0: m_i / rho_0 = sum_p (rho_p / rho_0) V_p N_i, m^3
   // (equal to Phi_i when every grain has density rho_0).
   std::vector<double> node_mass_;
-  std::vector<Vec<D>> node_momentum_; // q_i / rho_0, m^4/s
-  std::vector<Vec<D>> free_mask_;     // 1 on free velocity components, 0 on constrained
-  std::vector<int> row_of_node_;      // stress row index or -1
+  std::vector<Vec<D>> node_momentum_;   // q_i / rho_0, m^4/s
+  std::vector<Vec<D>> free_mask_;       // 1 on free velocity components, 0 on constrained
+  std::vector<int> row_of_node_;        // stress row index or -1
   std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start
   std::vector<double> row_mu_sum_, row_cohesion_sum_;  // sum_p V_p N_j (mu_p, c_p)
   // move_grains_apart (decompaction.cpp): per node, the relative excess; per
   // grain, the lift and its cell's base node.
   std::vector<double> move_excess_, move_lift_;
   std::vector<std::int64_t> move_base_;
+  // project_grains_apart: per node, its 3^d row of L (node to node,
+  // sum_p V_p grad N_j . grad N_k), its capacity and potential; the nodes
+  // holding grains, by colour (coordinate parities).
+  std::vector<double> project_L_, project_full_, project_capacity_, project_q_;
+  std::array<std::vector<std::int64_t>, ipow(2, D)> project_nodes_;
 
   // Obstacles (METHOD.md section 3): rows [obstacle_row_start_, rows) are
   // nodes within one cell of an obstacle (their normals are the first
@@ -197,7 +209,7 @@ class Simulation {
   // solid's share of their volume.
   std::vector<Obstacle<D>> obstacles_;
   int obstacle_row_start_ = 0;
-  std::vector<int> obstacle_index_;      // per obstacle row: which [[obstacle]]
+  std::vector<int> obstacle_index_;  // per obstacle row: which [[obstacle]]
   // Per obstacle row: a rigid ball against a wall, an obstacle or another
   // ball (gap >= 0, m, and the friction there; contact_other_ the other
   // ball's [[obstacle]] index, else -1), or a row with the sand (gap -1).
@@ -206,7 +218,7 @@ class Simulation {
   // Rows of a body against a solid: the lever arms of the touching points
   // from the body's centre and from the other body's (m).
   std::vector<Vec<D>> contact_arm_, contact_other_arm_;
-  std::vector<double> row_solid_;        // per sand row: solid fraction of V_j
+  std::vector<double> row_solid_;  // per sand row: solid fraction of V_j
 
   ConeProblem<D> problem_;
 };

@@ -44,9 +44,9 @@ struct BoundaryConfig {
 
 // mu(I) rheology (METHOD.md section 1): mu = mu_s + delta_mu / (1 + I0 / I).
 struct MuIConfig {
-  double delta_mu = 0.26;       // dimensionless
-  double I0 = 0.279;            // dimensionless
-  double grain_diameter = 1e-3; // m
+  double delta_mu = 0.26;        // dimensionless
+  double I0 = 0.279;             // dimensionless
+  double grain_diameter = 1e-3;  // m
 };
 
 struct MaterialConfig {
@@ -59,7 +59,7 @@ struct MaterialConfig {
   std::optional<MuIConfig> mu_i;
 };
 
-enum class Decompaction { Move, Push, Clamp };
+enum class Decompaction { Move, Push, Clamp, Project };
 
 struct SolverConfig {
   double tolerance = 1e-5;  // relative velocity change of the last sweep (docs/method.md)
@@ -77,7 +77,14 @@ struct SolverConfig {
   // Push: the cone problem pushes them apart, 10% of the excess per step
   // (the default before 0.2.0; it does not converge under refinement).
   // Clamp: METHOD.md's pure clamp and nothing else (over-compacts).
+  // Project: the cone problem only clamps and the grains are moved by a
+  // projection after advection (node potentials whose gradient takes every
+  // node back to phi_max, decompaction_moves rounds at most); the rule for
+  // solids driven into the sand, which the moves do not keep up with.
   Decompaction decompaction = Decompaction::Move;
+  // Whether the scene file set `decompaction` (else a scene with a solid
+  // moving into the sand takes Project; scene_obstacles.cpp).
+  bool decompaction_given = false;
   int decompaction_moves = 4;
 };
 
@@ -115,15 +122,16 @@ constexpr int kDefaultParticlesPerCell = 3;
 
 struct SandConfig {
   SandShape shape = SandShape::Box;
-  Vec3d min{0, 0, 0};     // box
-  Vec3d max{0, 0, 0};     // box
-  Vec3d center{0, 0, 0};  // cylinder / disk: centre of the base (3D, axis along z) or of the disk (2D)
-  double radius = 0.0;    // cylinder / disk
-  double height = 0.0;    // cylinder (3D only)
+  Vec3d min{0, 0, 0};  // box
+  Vec3d max{0, 0, 0};  // box
+  Vec3d center{0, 0,
+               0};  // cylinder / disk: centre of the base (3D, axis along z) or of the disk (2D)
+  double radius = 0.0;                                // cylinder / disk
+  double height = 0.0;                                // cylinder (3D only)
   int particles_per_cell = kDefaultParticlesPerCell;  // per axis
-  double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
-  Vec3d velocity{0, 0, 0};     // initial velocity, m/s
-  SandMaterial material{};     // overrides of [material] for this block's grains
+  double jitter = 0.0;                                // in [0, 1]: fraction of the particle spacing
+  Vec3d velocity{0, 0, 0};                            // initial velocity, m/s
+  SandMaterial material{};  // overrides of [material] for this block's grains
   // Polygon (2D): the corners in order, either orientation; z unused.
   std::vector<Vec3d> vertices{};
   // Mesh (3D): the file as given, its absolute path (relative paths are
@@ -147,7 +155,7 @@ struct SpoutConfig {
   double start = 0.0;       // s
   double stop = std::numeric_limits<double>::infinity();  // s; infinity = never
   int particles_per_cell = kDefaultParticlesPerCell;      // per axis
-  double jitter = 0.0;         // in [0, 1]: fraction of the particle spacing
+  double jitter = 0.0;  // in [0, 1]: fraction of the particle spacing
 };
 
 // An [[obstacle]] block: a solid that sand cannot enter and slides on with
@@ -187,8 +195,9 @@ struct ObstacleConfig {
   std::shared_ptr<const DistanceGrid> distance{};  // sampled once every obstacle is read
   std::shared_ptr<const TriangleMesh> surface{};   // the triangles, transformed (for outputs)
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
-  double mu = 0.5;        // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
-  Vec3d velocity{0, 0, 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
+  double mu = 0.5;  // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
+  Vec3d velocity{0, 0,
+                 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
   // s: a fixed obstacle is taken away for the steps that start at or after
   // this time (a gate lifted, a shutter opened); infinity = never.
   double until = std::numeric_limits<double>::infinity();
@@ -218,7 +227,7 @@ constexpr double kMaxObstacleMu = 5.0;
 struct SceneConfig {
   std::string source;  // file name, for messages
   int dimension = 2;
-  Vec3d size{1, 1, 1};     // m, box from the origin
+  Vec3d size{1, 1, 1};        // m, box from the origin
   Vec3i resolution{1, 1, 1};  // cells per axis
   TimeConfig time;
   Vec3d gravity{0, -9.81, 0};

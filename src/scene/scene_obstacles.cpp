@@ -134,21 +134,30 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
 // moving into the sand are not supported yet (docs/method.md, "Frictional
 // obstacles": measured, a floor rising under a bed stirred it at up to
 // 0.4 m/s and compacted it to phi 1.1, with solves at their cap).
-void check_motion(TableReader& t, const ObstacleConfig& o, int d) {
+// Whether a fixed obstacle translates (a velocity, other than a plane's
+// along itself, which leaves its solid in place: a conveyor belt).
+bool moves_into_sand(const ObstacleConfig& o, int d) {
   const double speed = length(o.velocity);
-  if (speed == 0.0 || o.dynamic()) return;
+  if (speed == 0.0 || o.dynamic()) return false;
+  if (o.shape != ObstacleShape::Plane) return true;
   double normal = 0.0;
   for (int a = 0; a < d; ++a) normal += o.velocity[a] * o.normal[a];
-  if (o.shape == ObstacleShape::Plane && std::abs(normal) <= 1e-12 * speed) return;
+  return std::abs(normal) > 1e-12 * speed;
+}
+
+// A solid driven into the sand (a fixed obstacle given a velocity, other
+// than a plane sliding along itself) needs the projection: the grains'
+// moves do not keep up with it (docs/method.md, "Solids driven into the
+// sand"). Without a `solver.decompaction` key the scene takes it.
+void check_motion(TableReader& t, const ObstacleConfig& o, SceneConfig& s) {
+  if (!moves_into_sand(o, s.dimension)) return;
+  if (!s.solver.decompaction_given) s.solver.decompaction = Decompaction::Project;
+  if (s.solver.decompaction == Decompaction::Project) return;
   t.fail_at(t.node("velocity"), "velocity",
-            o.shape == ObstacleShape::Plane
-                ? fmt::format("has a component {} m/s along the plane's normal; allowed: a plane "
-                              "moving along itself (a conveyor belt), velocity . normal = 0",
-                              normal)
-                : fmt::format("a fixed {} cannot move; allowed: velocity on planes only, "
-                              "along the plane (a conveyor belt), or as the initial velocity "
-                              "of a rigid body (a disk or sphere with a density)",
-                              obstacle_shape_name(o.shape, d)));
+            fmt::format("a {} moving into the sand needs solver.decompaction = \"project\" (the "
+                        "default when a solid moves); allowed: that, or no velocity, or a plane "
+                        "moving along itself (velocity . normal = 0, a conveyor belt)",
+                        obstacle_shape_name(o.shape, s.dimension)));
 }
 
 // A rigid polygon must not cross itself (its mass properties are those of
@@ -263,7 +272,8 @@ void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Po
   for (int a = 0; a < 3; ++a) {
     lo[a] = o.extent_min[a] - margin;
     hi[a] = o.extent_max[a] + margin;
-    if (o.dynamic()) continue;  // a body goes anywhere: its solid is sampled whole
+    // A body goes anywhere, a moving solid through the box: sampled whole.
+    if (o.dynamic() || moves_into_sand(o, s.dimension)) continue;
     lo[a] = std::max(lo[a], -margin);
     hi[a] = std::min(hi[a], s.size[a] + margin);
   }
@@ -410,7 +420,7 @@ void check_bodies_clear(TableReader& t, const ObstacleConfig& o, const SceneConf
   }
 }
 
-ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
+ObstacleConfig read_obstacle(TableReader t, SceneConfig& s) {
   const int d = s.dimension;
   const std::string shape =
       dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D,
@@ -440,7 +450,7 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
                 "a rigid body cannot be taken away; allowed: until on fixed obstacles only");
     o.until = t.number("until", std::nullopt, kPositive);
   }
-  check_motion(t, o, d);
+  check_motion(t, o, s);
   t.reject_unknown();
   if (o.shape == ObstacleShape::Plane) {
     check_plane_reaches_box(t, o, s);
@@ -457,8 +467,9 @@ ObstacleConfig read_obstacle(TableReader t, const SceneConfig& s) {
 void read_all_obstacles(TableReader& root, SceneConfig& s) {
   s.obstacles.clear();
   if (const toml::array* list = root.array_of_tables("obstacle"))
-    root.for_each_table(*list, "obstacle",
-                        [&](TableReader t) { s.obstacles.push_back(read_obstacle(std::move(t), s)); });
+    root.for_each_table(*list, "obstacle", [&](TableReader t) {
+      s.obstacles.push_back(read_obstacle(std::move(t), s));
+    });
   sample_mesh_distances(s);
 }
 

@@ -28,7 +28,7 @@ using Names = std::vector<std::string>;
 
 const Names kFaces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
 const Names kBoundaryTypes{"stick", "slip", "free"};
-const Names kDecompactions{"move", "push", "clamp"};
+const Names kDecompactions{"move", "push", "clamp", "project"};
 const Names kShapes2D{"box", "disk", "polygon"};
 const Names kShapes3D{"box", "cylinder", "sphere", "mesh"};
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -127,10 +127,12 @@ void add_keys(Names& keys, const std::string& prefix, const std::vector<Field<S>
 }
 
 void read_solver(TableReader t, SolverConfig& s) {
+  s.decompaction_given = t.has("decompaction");
   const std::string rule = t.choice("decompaction", "move", kDecompactions);
-  s.decompaction = rule == "push"    ? Decompaction::Push
-                   : rule == "clamp" ? Decompaction::Clamp
-                                     : Decompaction::Move;
+  s.decompaction = rule == "push"      ? Decompaction::Push
+                   : rule == "clamp"   ? Decompaction::Clamp
+                   : rule == "project" ? Decompaction::Project
+                                       : Decompaction::Move;
   read_table(std::move(t), s, kSolverFields);
 }
 
@@ -308,8 +310,8 @@ void read_round(TableReader& t, SandConfig& c, const SceneConfig& s) {
 SandConfig read_sand(TableReader t, const SceneConfig& s) {
   const int d = s.dimension;
   SandConfig c;
-  const std::string shape = dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D,
-                                             shapes_of_other_dimension(d), d);
+  const std::string shape =
+      dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D, shapes_of_other_dimension(d), d);
   reject_other_shape_keys(t, shape);
   if (shape == "box") {
     read_box(t, c, s);
@@ -331,7 +333,8 @@ void read_all_sand(TableReader& root, SceneConfig& s) {
   if ((!list || list->empty()) && !s.spouts.empty()) return;  // all sand poured in
   if (!list) root.fail("sand", "missing; required: " + required);
   if (list->empty()) root.fail_at(root.node("sand"), "sand", "empty; required: " + required);
-  root.for_each_table(*list, "sand", [&](TableReader t) { s.sand.push_back(read_sand(std::move(t), s)); });
+  root.for_each_table(*list, "sand",
+                      [&](TableReader t) { s.sand.push_back(read_sand(std::move(t), s)); });
 }
 
 SceneConfig read_scene(const toml::table& doc, const std::string& file, const Origins& origins) {

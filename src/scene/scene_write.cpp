@@ -96,8 +96,8 @@ std::string spout_lines(const SpoutConfig& p, int d) {
   // TOML could say inf, but scene values must be finite: never closing is
   // the key's absence.
   out += std::isfinite(p.stop) ? fmt::format("stop = {}\n", num(p.stop)) : "# stop: never\n";
-  return out + fmt::format("particles_per_cell = {}\njitter = {}\n", p.particles_per_cell,
-                           num(p.jitter));
+  return out +
+         fmt::format("particles_per_cell = {}\njitter = {}\n", p.particles_per_cell, num(p.jitter));
 }
 
 // Only the keys of the obstacle's shape (the others are errors).
@@ -145,7 +145,16 @@ const char* boundary_name(BoundaryType t) {
 }
 
 const char* decompaction_name(Decompaction r) {
-  return r == Decompaction::Push ? "push" : r == Decompaction::Clamp ? "clamp" : "move";
+  switch (r) {
+    case Decompaction::Push:
+      return "push";
+    case Decompaction::Clamp:
+      return "clamp";
+    case Decompaction::Project:
+      return "project";
+    default:
+      return "move";
+  }
 }
 
 }  // namespace
@@ -153,8 +162,10 @@ const char* decompaction_name(Decompaction r) {
 std::string scene_to_toml(const SceneConfig& s) {
   const int d = s.dimension;
   const char* faces[] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
-  std::string out = fmt::format("# Resolved scene (every key, defaults filled in)\ndimension = {}\nseed = {}\ngravity = {}\n\n",
-                                d, s.seed, vecf(s.gravity, d));
+  std::string out = fmt::format(
+      "# Resolved scene (every key, defaults filled in)\ndimension = {}\nseed = {}\ngravity = "
+      "{}\n\n",
+      d, s.seed, vecf(s.gravity, d));
   Vec3d res{double(s.resolution[0]), double(s.resolution[1]), double(s.resolution[2])};
   out += fmt::format("[grid]\nsize = {}\nresolution = {}\n\n", vecf(s.size, d), vec(res, d));
   out += fmt::format("[time]\nfps = {}\nframes = {}\nsubsteps = {}\ncfl = {}\n\n", num(s.time.fps),

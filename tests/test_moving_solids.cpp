@@ -1,0 +1,165 @@
+// Solids driven into the sand (obstacle[].velocity on a fixed obstacle)
+// with the projection as decompaction (solver.decompaction = "project",
+// decompaction.cpp): the grains a solid crowds are moved by the gradient of
+// node potentials that take every node back to phi_max. Checked against
+// kinematics (a rising floor lifts a bed at rest as a block), the phi_max
+// bound, Rankine's passive thrust on a ploughing blade, and thread
+// independence.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "physics/simulation.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_reader.hpp"
+#include "test_support.hpp"
+
+namespace sablier {
+namespace {
+
+const testing::Environment* const kOneThread =
+    testing::AddGlobalTestEnvironment(new test::OneThread);
+
+using test::run_until;
+using test::scene;
+
+// The largest volume fraction the grains see (G2P's interpolated phi).
+template <int D>
+double largest_phi(const Simulation<D>& sim) {
+  double most = 0.0;
+  for (double p : sim.particles().phi) most = std::max(most, p);
+  return most;
+}
+
+// A 10 cm bed (jittered grains) resting on a plane floor 5 cm above the
+// box's floor that rises at 0.1 m/s. Source: kinematics. The floor cannot
+// be crossed and the sand above it has nowhere else to go, so the bed must
+// rise with it as a block: every grain at the floor's speed, the sand
+// neither compacted beyond phi_max nor left behind. With the grains' moves
+// (the default decompaction without moving solids) the grains crossed the
+// nodes a layer at a time and their velocities formed a checkerboard
+// (docs/method.md); with the projection, measured (2D, 0.5 s): mean
+// vertical velocity 0.0993 m/s, slowest grain 0.093, largest phi 0.601.
+template <int D>
+void rising_floor_lifts_the_bed() {
+  const double up = 0.1;
+  SceneConfig s = scene(
+      D == 2 ? "bed2d.toml" : "bed3d.toml",
+      D == 2 ? std::vector<std::string>{"grid.size=[0.2,0.4]", "grid.resolution=[20,40]",
+                                        "sand.0.min=[0.0,0.05]", "sand.0.max=[0.2,0.15]",
+                                        "sand.0.jitter=0.3", "sand.0.particles_per_cell=3"}
+             : std::vector<std::string>{"grid.size=[0.1,0.1,0.25]", "grid.resolution=[10,10,25]",
+                                        "sand.0.min=[0.0,0.0,0.03]", "sand.0.max=[0.1,0.1,0.1]",
+                                        "sand.0.jitter=0.3", "sand.0.particles_per_cell=3"});
+  ObstacleConfig floor;
+  floor.shape = ObstacleShape::Plane;
+  floor.point = D == 2 ? Vec3d{0, 0.05, 0} : Vec3d{0, 0, 0.03};
+  floor.normal = D == 2 ? Vec3d{0, 1, 0} : Vec3d{0, 0, 1};
+  floor.velocity = D == 2 ? Vec3d{0, up, 0} : Vec3d{0, 0, up};
+  floor.mu = 0.5;
+  s.obstacles.push_back(floor);
+  s.solver.decompaction = Decompaction::Project;
+  Simulation<D> sim(s);
+  const std::size_t grains = sim.particles().size();
+  const double duration = D == 2 ? 0.5 : 0.3;
+  run_until(sim, duration, 1.0 / 60);
+  double mean = 0.0, slowest = 1e300, fastest = -1e300, lowest = 1e300;
+  for (std::size_t p = 0; p < sim.particles().size(); ++p) {
+    const double v = sim.particles().velocity[p][D - 1];
+    mean += v;
+    slowest = std::min(slowest, v);
+    fastest = std::max(fastest, v);
+    lowest = std::min(lowest, sim.particles().position[p][D - 1]);
+  }
+  mean /= static_cast<double>(sim.particles().size());
+  const double floor_now = floor.point[D - 1] + up * duration;
+  std::cout << D << "D rising floor: mean vertical velocity " << mean << " m/s (slowest " << slowest
+            << ", fastest " << fastest << "), largest phi " << largest_phi(sim) << ", lowest grain "
+            << lowest - floor_now << " m above the floor\n";
+  EXPECT_EQ(sim.particles().size(), grains);
+  EXPECT_NEAR(mean / up, 1.0, 0.02);
+  EXPECT_GT(slowest, 0.85 * up);
+  EXPECT_LT(fastest, 1.15 * up);
+  EXPECT_LT(largest_phi(sim), 0.61);
+  EXPECT_GT(lowest, floor_now - 1e-9);
+}
+
+TEST(MovingSolids, RisingFloorLiftsTheBedAsABlock2D) { rising_floor_lifts_the_bed<2>(); }
+TEST(MovingSolids, RisingFloorLiftsTheBedAsABlock3D) { rising_floor_lifts_the_bed<3>(); }
+
+// The shipped plough (scenes/plough2d.toml): a smooth blade pushed at 0.1
+// m/s into a 10 cm bed on a rough floor. Source: Rankine (1857), the
+// passive earth pressure on a smooth vertical wall pushed into a horizontal
+// cohesionless backfill, F_p = K_p rho phi_max g H^2 / 2 with K_p = (1 +
+// sin phi) / (1 - sin phi) = 3 for sin phi = mu (the 2D Mohr-Coulomb angle
+// of METHOD.md section 4): 220.7 N/m for H = 0.1 m. Rankine's state is the
+// associated material's collapse; our flow rule is non-associated (no
+// dilatancy, METHOD.md section 1), which lowers collapse loads (Drescher &
+// Detournay 1993), and the mound grows as the blade moves. Measured: mean
+// force over 0.05-0.3 s 198 N/m (-10%); the test asks for the mean within
+// 25% of F_p. The sand stays at phi_max: after the first step the largest
+// phi any grain sees is 0.6006 (with the grains' moves instead, in the same
+// box with a slip floor, 10% of the grains were at phi 0.70 or more after
+// 1.2 s, docs/method.md).
+TEST(MovingSolids, PloughPushesWithRankinesPassiveThrust2D) {
+  const SceneConfig s = scene("plough2d.toml");
+  ASSERT_EQ(s.solver.decompaction, Decompaction::Project);  // chosen for the moving blade
+  Simulation<2> sim(s);
+  const std::size_t grains = sim.particles().size();
+  double impulse = 0.0, span = 0.0, most_phi = 0.0;
+  while (sim.time() < 0.3 - 1e-12) {
+    const StepInfo info = sim.step(sim.adaptive_dt(std::min(1.0 / 30, 0.3 - sim.time())));
+    if (sim.time() > 0.05 + 1e-12) {
+      impulse += -info.obstacle_force[0][0] * info.dt;
+      span += info.dt;
+    }
+    // From the second step on: the first step's phi is the jittered
+    // seeding's own (up to 0.627), before any projection.
+    if (sim.steps() > 1) most_phi = std::max(most_phi, largest_phi(sim));
+  }
+  const double rankine = 3.0 * s.material.density * s.material.phi_max * 9.81 * 0.1 * 0.1 / 2.0;
+  std::cout << "plough: mean force " << impulse / span << " N/m against Rankine's passive "
+            << rankine << " N/m, largest phi " << most_phi << "\n";
+  EXPECT_NEAR(impulse / span / rankine, 1.0, 0.25);
+  EXPECT_LT(most_phi, 0.61);
+  EXPECT_EQ(sim.particles().size(), grains);
+}
+
+// The projection's sums are in particle order and its Gauss-Seidel colours
+// independent (decompaction.cpp): the same bits on 1 and 2 threads.
+TEST(MovingSolids, ProjectionGivesTheSameBitsOnAnyThreadCount) {
+  const SceneConfig s = scene("plough2d.toml", {"time.frames=6"});
+  std::vector<std::vector<Vec<2>>> positions;
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    Simulation<2> sim(s);
+    run_until(sim, 0.2, 1.0 / 30);
+    positions.push_back(sim.particles().position);
+  }
+  omp_set_num_threads(1);
+  ASSERT_EQ(positions[0].size(), positions[1].size());
+  for (std::size_t p = 0; p < positions[0].size(); ++p)
+    ASSERT_EQ(positions[0][p], positions[1][p]) << p;
+}
+
+// Without a moving solid the projection leaves a bed at rest alone: bed2d
+// (frictionless side walls) with decompaction = "project" stays below 1e-3
+// m/s after 1 s, as with the moves (METHOD.md section 5's bed test).
+TEST(MovingSolids, ProjectionLeavesABedAtRest2D) {
+  Simulation<2> sim(scene("bed2d.toml", {"solver.decompaction=\"project\""}));
+  run_until(sim, 1.0, 1.0 / 30);
+  double fastest = 0.0;
+  for (const Vec<2>& u : sim.particles().velocity) fastest = std::max(fastest, u.norm());
+  std::cout << "bed2d with the projection: fastest grain after 1 s " << fastest
+            << " m/s, largest phi " << largest_phi(sim) << "\n";
+  EXPECT_LT(fastest, 1e-3);
+  EXPECT_LT(largest_phi(sim), 0.61);
+}
+
+}  // namespace
+}  // namespace sablier
