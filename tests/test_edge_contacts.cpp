@@ -244,6 +244,36 @@ const std::string kRoom =
     "resolution = [40, 15, 15]\n[boundary]\ndefault = \"stick\"\n[[sand]]\nshape = \"box\"\n"
     "min = [0.75, 0.0, 0.0]\nmax = [0.8, 0.05, 0.05]\n";
 
+// The same plank rolled 0.2 rad about its long axis, its lower long edge
+// touching the beam's two top edges: those crossings are edge contacts
+// (n down, on the cones), and the far lower edge, 6 sin(0.2) cm up, crosses
+// them where the plank's face passes the beam's edges (n outside its
+// cone): its rows keep it above them, so that the plank rolling back flat
+// lands on them instead of passing through.
+TEST(EdgeContacts, RollingPlankSeesItsFarEdgeComing) {
+  const double h = 0.02, r = 0.2, w = 0.06;
+  Obstacle<3> beam;
+  beam.shape = ObstacleShape::Box;
+  beam.a = V3(0.28, 0.05, 0.0);
+  beam.b = V3(0.32, 0.25, 0.1);
+  // The lower edge (local y = -3 cm, z = -3 cm) at height 0.1.
+  const V3 down = Eigen::AngleAxisd(r, V3::UnitX()) * V3(0.0, -0.03, -0.03);
+  const Obstacle<3> plank =
+      box_body(V3(0.3, 0.15, 0.1) - down, V3(0.15, 0.03, 0.03), r * 180.0 / kPi, V3::UnitX());
+  EdgeScratch ws;
+  std::vector<EdgeContact> out;
+  edge_contacts(plank, beam, h, ws, out);
+  ASSERT_EQ(out.size(), 4u);
+  int near = 0, far = 0;
+  for (const EdgeContact& c : out) {
+    EXPECT_NEAR((c.normal - V3(0, 0, -1)).norm(), 0.0, 1e-15);
+    if (std::abs(c.separation) < 1e-15) ++near;
+    if (std::abs(c.separation - w * std::sin(r)) < 1e-15) ++far;
+  }
+  EXPECT_EQ(near, 2);
+  EXPECT_EQ(far, 2);
+}
+
 // A body (obstacle `k`) released a tenth of a cell above a support that
 // only its edges can meet, run for 0.5 s. Static equilibrium (Newton's
 // first law): at rest, the contact rows carry its weight, F = m g, to the
@@ -391,6 +421,48 @@ TEST(EdgeContacts, PlankRestsAcrossABeamBody) {
   EXPECT_LT(r.force_error, 1e-3);
   EXPECT_LT(beam.velocity.norm(), 1e-3);
   EXPECT_LT((on_beam - V3(0, 0, weight)).norm(), 1e-3 * weight);
+}
+
+// The plank dropped from 6 cm above the beam turned 20 degrees about (0.3,
+// 1, 0.2): it lands on a corner and an edge, rolls and rocks across the
+// beam. The contact rows are Signorini conditions (no overlap): at every
+// step no point of the beam's edges is inside the plank and no point of
+// the plank's edges inside the beam by more than 1e-3 of a cell (sampled
+// every 1/200 of each edge). Before the far edge's rows the plank rolling
+// flat passed through the beam's edge, which ended 1.5 cm (0.75 cells)
+// inside it. It comes to rest (across the beam) within the second.
+TEST(EdgeContacts, PlankTumblingOntoABeamNeverEntersIt) {
+  const std::string text =
+      kRoom +
+      "[[obstacle]]\nshape = \"box\"\nmin = [0.28, 0.05, 0.0]\nmax = [0.32, 0.25, 0.1]\n"
+      "[[obstacle]]\nshape = \"box\"\nmin = [0.17, 0.12, 0.16]\nmax = [0.47, 0.18, 0.22]\n"
+      "density = 500\nangle = 20\naxis = [0.3, 1.0, 0.2]\n";
+  Simulation<3> sim(parse_scene(text, "tumble.toml"));
+  std::vector<SolidEdge> edges;
+  // The deepest sampled point of one solid's edges inside the other.
+  const auto deepest = [&](const Obstacle<3>& of, const Obstacle<3>& in) {
+    solid_edges(of, of.a, 1e300, edges);
+    double depth = 1e300;
+    V3 n;
+    for (const SolidEdge& e : edges)
+      for (int k = 0; k <= 200; ++k)
+        depth =
+            std::min(depth, signed_distance(in, V3(e.from + (k / 200.0) * (e.to - e.from)), &n));
+    return depth;
+  };
+  double worst = 1e300;
+  while (sim.time() < 1.0 - 1e-12) {
+    const StepInfo info = sim.step(sim.adaptive_dt(1.0 - sim.time()));
+    ASSERT_LE(info.solve.residual, sim.scene().solver.tolerance);
+    const auto now = sim.obstacles_at(sim.time());
+    worst = std::min({worst, deepest(now[0], now[1]), deepest(now[1], now[0])});
+  }
+  const Obstacle<3>& plank = sim.obstacles()[1];
+  std::cout << "plank tumbling onto a beam: deepest edge point inside the other solid "
+            << -worst / sim.grid().h() << " cells; after 1 s centre at " << plank.a.transpose()
+            << ", speed " << plank.velocity.norm() << " m/s\n";
+  EXPECT_GT(worst, -1e-3 * sim.grid().h());
+  EXPECT_LT(plank.velocity.norm(), 1e-3);
 }
 
 }  // namespace

@@ -142,11 +142,16 @@ struct EdgeContact {
 
 // The pair of edges as a contact, when it is one: the closest points
 // strictly inside both edges (an end is a corner, which has its own rows),
-// the edges not parallel, the normal n = +-(e1 x e2) leaving the body's
-// edge within its normal cone and -n leaving the solid's within its own
-// (the sign for which both hold; neither: the edges meet across a face),
-// and the separation along n within a cell either way (further inside is
-// not a contact to resolve).
+// the edges not parallel, and the separation along the normal n = +-(e1 x
+// e2) within a cell either way (further inside is not a contact to
+// resolve). The sign: the one for which n leaves the body's edge within
+// its normal cone and -n leaves the solid's within its own, when one does
+// (the edges can touch there: the plane across both separates the solids
+// near them; a negative separation is then an overlap to stop). When
+// neither does, the edges cross only where a face of one passes the
+// other's edge (the far lower edge of a plank rolling onto a beam, not yet
+// down): passing through each other would still bring the solids into each
+// other, so n keeps the edges on the sides they are on.
 inline bool edge_contact(const SolidEdge& body, const SolidEdge& solid, double h,
                          EdgeContact* out) {
   constexpr double kInside = 1e-6;    // of the edge's length, from either end
@@ -161,8 +166,13 @@ inline bool edge_contact(const SolidEdge& body, const SolidEdge& solid, double h
   Vec<3> n = axis / len;
   const double plus = std::min(cone_margin(body, n), cone_margin(solid, -n));
   const double minus = std::min(cone_margin(body, -n), cone_margin(solid, n));
-  if (plus < 0.0 && minus < 0.0) return false;
-  if (minus > plus) n = -n;
+  if (plus >= 0.0 || minus >= 0.0) {
+    if (minus > plus) n = -n;
+  } else {
+    const double along = (c.q - c.p).dot(n);
+    if (along == 0.0) return false;
+    if (along < 0.0) n = -n;
+  }
   const double separation = (c.q - c.p).dot(n);
   if (!(std::abs(separation) < h)) return false;
   *out = {c.p, c.q, n, separation, 0};
