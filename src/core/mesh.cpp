@@ -117,6 +117,62 @@ std::size_t open_edge_count(const TriangleMesh& mesh) {
   return open;
 }
 
+std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
+  // Each triangle's unit normal, turned outward by the sign of the volume.
+  const auto& v = mesh.vertices;
+  double six_v = 0.0;
+  for (const auto& t : mesh.triangles) six_v += dot(v[t[0]], cross(v[t[1]], v[t[2]]));
+  const double side = six_v < 0.0 ? -1.0 : 1.0;
+  std::vector<Point3> normal;
+  normal.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    const Point3 n = cross(sub(v[t[1]], v[t[0]]), sub(v[t[2]], v[t[0]]));
+    const double len = norm(n);
+    normal.push_back(len > 0.0 ? Point3{side * n[0] / len, side * n[1] / len, side * n[2] / len}
+                               : Point3{0, 0, 0});
+  }
+  // (edge key, triangle, corner opposite the edge), sorted by key.
+  struct Side {
+    std::uint64_t key;
+    std::int32_t tri, opposite;
+  };
+  std::vector<Side> sides;
+  sides.reserve(mesh.triangles.size() * 3);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto& t = mesh.triangles[f];
+      const auto i = static_cast<std::uint32_t>(t[k]),
+                 j = static_cast<std::uint32_t>(t[(k + 1) % 3]);
+      sides.push_back({std::uint64_t(std::min(i, j)) << 32 | std::max(i, j),
+                       static_cast<std::int32_t>(f), t[(k + 2) % 3]});
+    }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.key != y.key ? x.key < y.key : x.tri < y.tri;
+  });
+  constexpr double kFlat = 5e-7;  // 1 - cos of 1 mrad: coplanar triangles
+  std::vector<FeatureEdge> out;
+  for (std::size_t k = 0; k < sides.size();) {
+    std::size_t run = k;
+    while (run < sides.size() && sides[run].key == sides[k].key) ++run;
+    if (run - k == 2) {
+      const Side &s0 = sides[k], &s1 = sides[k + 1];
+      const Point3 &n0 = normal[s0.tri], &n1 = normal[s1.tri];
+      const auto a = static_cast<std::int32_t>(s0.key >> 32),
+                 b = static_cast<std::int32_t>(s0.key & 0xffffffffu);
+      // Convex: the far corner of one triangle lies below the other's plane.
+      const bool convex = dot(sub(v[s1.opposite], v[a]), n0) < 0.0;
+      const Point3 sum{n0[0] + n1[0], n0[1] + n1[1], n0[2] + n1[2]};
+      const double len = norm(sum);
+      if (convex && dot(n0, n1) < 1.0 - kFlat && len > 0.0) {
+        const Point3 bisector{sum[0] / len, sum[1] / len, sum[2] / len};
+        out.push_back({v[a], v[b], bisector, dot(n0, bisector)});
+      }
+    }
+    k = run;
+  }
+  return out;
+}
+
 SolidMesh::SolidMesh(const TriangleMesh& mesh) {
   tri_.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles)

@@ -37,6 +37,23 @@ TriangleMesh read_mesh_file(const std::string& path);
 // Edges not shared by exactly two triangles (0 for a closed mesh).
 std::size_t open_edge_count(const TriangleMesh& mesh);
 
+// An edge where a closed mesh's surface folds outward (convex, not flat):
+// its ends, and its normal cone, the arc of the outward unit normals
+// between its two triangles' (about `bisector`, unit, of half-angle
+// acos(cos_half)). Rigid bodies meet other solids along such edges too
+// (physics/edges.hpp).
+struct FeatureEdge {
+  Point3 from, to;
+  Point3 bisector;
+  double cos_half;
+};
+
+// The convex edges of a closed mesh whose two triangles are more than
+// about a milliradian from coplanar (a face's diagonals are left out), each
+// once; outward is the side the mesh's signed volume says, whichever way
+// it is oriented. Edges not shared by exactly two triangles are skipped.
+std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh);
+
 // The inside test of a closed mesh and the distance to its surface, built
 // once; queries allocate nothing and may run concurrently.
 class SolidMesh {

@@ -13,6 +13,7 @@
 
 #include "core/distance_grid.hpp"
 #include "core/mass_properties.hpp"
+#include "core/mesh.hpp"
 #include "core/polygon.hpp"
 #include "core/tensor.hpp"
 #include "scene/scene.hpp"
@@ -30,6 +31,9 @@ struct Obstacle {
   double height = 0.0;
   std::shared_ptr<const SolidPolygon> polygon;   // 2D polygons
   std::shared_ptr<const DistanceGrid> distance;  // 3D meshes
+  // 3D meshes: the convex edges of the solid as the scene gave it (`points`'
+  // frame for a body, less `a` for a fixed mesh), for edge contacts (edges.hpp).
+  std::shared_ptr<const std::vector<FeatureEdge>> edges;
   double mu = 0.5;                   // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
   double until = 1e300;              // s: taken away from this time on (scene's obstacle[].until)
@@ -163,6 +167,7 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   }
   o.polygon = c.polygon;
   o.distance = c.distance;
+  o.edges = c.edges;
   o.until = c.until;
   if (c.shape == ObstacleShape::Plane) o.b.normalize();
   o.radius = c.radius;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "physics/edges.hpp"
 #include "physics/shape.hpp"
 #include "physics/simulation.hpp"
 #include "solver/zones.hpp"
@@ -92,9 +93,9 @@ void Simulation<D>::transfer_to_grid(double dt) {
     std::int64_t node;
     Vec<D> normal;
     int which;
-    double gap = -1.0;  // a body against a solid: the gap (m); else -1
-    double mu = 0.0;    // and the friction there
-    int other = -1;     // the solid, when it is another body
+    double gap = -1.0;                         // a body against a solid: the gap (m); else -1
+    double mu = 0.0;                           // and the friction there
+    int other = -1;                            // the solid, when it is another body
     Vec<D> surface_velocity = Vec<D>::Zero();  // the solid's, when it is a moving obstacle
     Vec<D> arm = Vec<D>::Zero();               // a body against a solid: its point from its centre
     Vec<D> other_arm = Vec<D>::Zero();         // and the other body's, from that one's centre
@@ -121,14 +122,15 @@ void Simulation<D>::transfer_to_grid(double dt) {
       }
     // A rigid body meets walls and other solids by points: a ball by its
     // centre, reaching its radius further, a box or polygon by its corners,
-    // a mesh by its vertices (docs/scenes.md, "Rigid boxes, polygons and
-    // meshes"). Such a point within a cell of one of the
-    // box's walls gets a row against it: on the ghost node just outside the
-    // wall nearest the point, whose velocity and inverse mass are zero, so
-    // that the row sees the body alone. Its normal points from the body to
-    // the wall; the row lets the body close the gap within the step
-    // (contact_velocity, below), and stick walls get the body's friction,
-    // slip walls none. Free faces and openings hold nothing back.
+    // a mesh by its vertices, and in 3D other solids by its edges too
+    // (docs/scenes.md, "Rigid boxes, polygons and meshes"). Such a point
+    // within a cell of one of the box's walls gets a row against it: on the
+    // ghost node just outside the wall nearest the point, whose velocity and
+    // inverse mass are zero, so that the row sees the body alone. Its normal
+    // points from the body to the wall; the row lets the body close the gap
+    // within the step (contact_velocity, below), and stick walls get the
+    // body's friction, slip walls none. Free faces and openings hold nothing
+    // back.
     const auto& cells = grid_.cells();
     const std::int64_t count = static_cast<std::int64_t>(obstacles.size());
     constexpr int NC = ipow(2, D);
@@ -148,6 +150,14 @@ void Simulation<D>::transfer_to_grid(double dt) {
       return static_cast<int>(out.size());
     };
     std::vector<Touch> points;
+    // The ghost node of a row's key (one per pair of solids and point).
+    const auto ghost_node = [&](std::int64_t key) {
+      std::array<int, D> ghost{};
+      ghost[0] = -1;
+      ghost[1] = static_cast<int>(key % (cells[1] + 1));
+      if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
+      return grid_.node_index(ghost);
+    };
     // Rows of body b's points against solid s (the smaller friction of the
     // two, and the solid's motion: a moving plane drags the body along, as
     // it does the sand), on ghost nodes beyond the xmin face (zero velocity
@@ -166,11 +176,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const Vec<D> n = -out;
         const std::int64_t key =
             static_cast<std::int64_t>(b) * count + static_cast<std::int64_t>(s) + count * count * t;
-        std::array<int, D> ghost{};
-        ghost[0] = -1;
-        ghost[1] = static_cast<int>(key % (cells[1] + 1));
-        if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
-        Contact c{grid_.node_index(ghost),
+        Contact c{ghost_node(key),
                   n,
                   static_cast<int>(b),
                   std::max(gap, 0.0),
@@ -217,14 +223,41 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const std::int64_t key = static_cast<std::int64_t>(s) * count +
                                  static_cast<std::int64_t>(b) +
                                  count * count * (NC + static_cast<std::int64_t>(t));
-        std::array<int, D> ghost{};
-        ghost[0] = -1;
-        ghost[1] = static_cast<int>(key % (cells[1] + 1));
-        if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
-        Contact c{grid_.node_index(ghost), n,  static_cast<int>(b), std::max(distance, 0.0),
-                  std::min(o.mu, q.mu),    -1, q.velocity};
+        Contact c{ghost_node(key),      n,  static_cast<int>(b), std::max(distance, 0.0),
+                  std::min(o.mu, q.mu), -1, q.velocity};
         c.arm = x - distance * n - o.a;
         body_contacts.push_back(c);
+      }
+    };
+    // Rows where an edge of body b crosses an edge of solid s, a fixed box
+    // or mesh or another body (3D, edges.hpp): the normal from the body to
+    // the solid across both edges, the arms to the edges' closest points.
+    // Their keys come after every point's.
+    std::int64_t edge_slot = 2 * NC;
+    for (const Obstacle<D>& o : obstacles)
+      if (o.points) edge_slot = std::max(edge_slot, static_cast<std::int64_t>(o.points->size()));
+    EdgeScratch edge_scratch;
+    std::vector<EdgeContact> crossings;
+    const auto edges_against = [&](std::size_t b, std::size_t s) {
+      if constexpr (D == 3) {
+        const Obstacle<D>& o = obstacles[b];
+        const Obstacle<D>& q = obstacles[s];
+        edge_contacts(o, q, h, edge_scratch, crossings);
+        for (const EdgeContact& e : crossings) {
+          const std::int64_t key = static_cast<std::int64_t>(b) * count +
+                                   static_cast<std::int64_t>(s) +
+                                   count * count * (edge_slot + e.pair);
+          Contact c{ghost_node(key),
+                    e.normal,
+                    static_cast<int>(b),
+                    std::max(e.separation, 0.0),
+                    std::min(o.mu, q.mu),
+                    q.dynamic ? static_cast<int>(s) : -1,
+                    q.dynamic ? Vec<D>::Zero() : q.velocity};
+          c.arm = e.on_body - o.a;
+          if (q.dynamic) c.other_arm = e.on_solid - q.a;
+          body_contacts.push_back(c);
+        }
       }
     };
     for (std::size_t k = 0; k < obstacles.size(); ++k) {
@@ -255,8 +288,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
       // Against the other obstacles and bodies, each pair of bodies once: a
       // ball's centre against the other's distance, a box's, polygon's or
       // mesh's points against a fixed solid's distance (and the solid's
-      // corners against the body's), and two such bodies each one's points
-      // against the other's distance.
+      // corners against the body's), two such bodies each one's points
+      // against the other's distance, and in 3D edges crossing edges.
       for (std::size_t m = 0; m < obstacles.size(); ++m) {
         const Obstacle<D>& q = obstacles[m];
         if (m == k || (q.dynamic && m < k)) continue;
@@ -268,6 +301,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         against_solid(k, m);
         if (pointed && q.dynamic) against_solid(m, k);
         if (pointed && !q.dynamic) corners_against_body(k, m);
+        edges_against(k, m);
       }
     }
     for (const auto& list : obstacle_by_colour) {
@@ -394,7 +428,8 @@ void Simulation<D>::transfer_to_particles(double dt) {
   const ConeProblem<D>& P = problem_;
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-  const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);  // where the step leaves them
+  const std::vector<Obstacle<D>> obstacles_end =
+      obstacles_at(time_ + dt);  // where the step leaves them
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t p = 0; p < n; ++p) {
     Vec<D>& x = particles_.position[p];
@@ -427,9 +462,9 @@ void Simulation<D>::transfer_to_particles(double dt) {
       // Lagged inertial number I = shear d_p / sqrt(P / rho_p), P the bulk
       // pressure, d_p and rho_p the particle's own grains.
       const double pressure = phi * trace_of<D>(lambda) / D;
-      particles_.inertial[p] = pressure > 0.0
-                                   ? shear * mp.mu_i.grain_diameter / std::sqrt(pressure / mp.density)
-                                   : std::numeric_limits<double>::infinity();
+      particles_.inertial[p] =
+          pressure > 0.0 ? shear * mp.mu_i.grain_diameter / std::sqrt(pressure / mp.density)
+                         : std::numeric_limits<double>::infinity();
     }
     if (mp.cohesion_decay > 0.0)
       particles_.cohesion[p] *= std::exp(-mp.cohesion_decay * shear * dt);
@@ -457,9 +492,9 @@ void Simulation<D>::transfer_to_particles(double dt) {
                              ", stage G2P (grid to particles)");
 }
 
-#define SABLIER_INSTANTIATE(D)                                                     \
-  template void Simulation<D>::sort_particles();                                   \
-  template void Simulation<D>::transfer_to_grid(double);                           \
+#define SABLIER_INSTANTIATE(D)                                                          \
+  template void Simulation<D>::sort_particles();                                        \
+  template void Simulation<D>::transfer_to_grid(double);                                \
   template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const; \
   template void Simulation<D>::transfer_to_particles(double);
 SABLIER_INSTANTIATE(2)

@@ -170,6 +170,7 @@ enum class ObstacleShape { Plane, Box, Ball, Cylinder, Polygon, Mesh };
 class SolidPolygon;   // core/polygon.hpp
 class DistanceGrid;   // core/distance_grid.hpp
 struct TriangleMesh;  // core/mesh.hpp
+struct FeatureEdge;   // core/mesh.hpp
 
 struct ObstacleConfig {
   ObstacleShape shape = ObstacleShape::Plane;
@@ -194,6 +195,8 @@ struct ObstacleConfig {
   std::shared_ptr<const SolidMesh> solid{};        // the closed mesh, transformed (exact queries)
   std::shared_ptr<const DistanceGrid> distance{};  // sampled once every obstacle is read
   std::shared_ptr<const TriangleMesh> surface{};   // the triangles, transformed (for outputs)
+  // The mesh's convex edges (core/mesh.hpp), for rigid bodies' edge contacts.
+  std::shared_ptr<const std::vector<FeatureEdge>> edges{};
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
   double mu = 0.5;  // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
   Vec3d velocity{0, 0,

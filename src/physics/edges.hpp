@@ -1,0 +1,215 @@
+// Edge-on-edge contacts in 3D (docs/method.md, "Frictional obstacles"): a
+// rigid box or mesh meets the other solids by its corners or vertices
+// (transfer.cpp), which miss two edges crossing with no corner in contact
+// (a box lying across a ridge, a plank across a beam). Where an edge of
+// such a body crosses an edge of a fixed box or mesh or of another such
+// body, the two edges' closest points get a contact row like a corner's.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "core/mesh.hpp"
+#include "physics/obstacle.hpp"
+
+namespace sablier {
+
+// The closest points p = p0 + s (p1 - p0) and q = q0 + t (q1 - q0) of two
+// segments, s and t in [0, 1] (Ericson, Real-Time Collision Detection,
+// 2005, 5.1.9): the lines' closest points, clamped to one segment and then
+// to the other. Parallel segments get one closest pair of the many (s = 0
+// where it can be).
+struct SegmentPair {
+  double s = 0.0, t = 0.0;
+  Vec<3> p, q;
+};
+
+inline SegmentPair closest_points(const Vec<3>& p0, const Vec<3>& p1, const Vec<3>& q0,
+                                  const Vec<3>& q1) {
+  const Vec<3> d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  SegmentPair out;
+  if (a > 0.0 && e > 0.0) {
+    const double b = d1.dot(d2), c = d1.dot(r);
+    const double denom = a * e - b * b;  // |d1 x d2|^2: zero when parallel
+    out.s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+    out.t = (b * out.s + f) / e;
+    if (out.t < 0.0) {
+      out.t = 0.0;
+      out.s = std::clamp(-c / a, 0.0, 1.0);
+    } else if (out.t > 1.0) {
+      out.t = 1.0;
+      out.s = std::clamp((b - c) / a, 0.0, 1.0);
+    }
+  } else if (a > 0.0) {  // q is a point
+    out.s = std::clamp(-d1.dot(r) / a, 0.0, 1.0);
+  } else if (e > 0.0) {  // p is a point
+    out.t = std::clamp(f / e, 0.0, 1.0);
+  }
+  out.p = p0 + out.s * d1;
+  out.q = q0 + out.t * d2;
+  return out;
+}
+
+// An edge of a solid where it stands, with its normal cone: the outward
+// normals of its two faces span the arc about `bisector` (unit, across the
+// edge) of half-angle acos(cos_half). `index` numbers it among the solid's
+// edges (for the row's warm start).
+struct SolidEdge {
+  Vec<3> from, to, bisector;
+  double cos_half;
+  int index;
+};
+
+// How many edges a box (12) or a mesh (its convex ones) has; 0 otherwise.
+inline int edge_count(const Obstacle<3>& o) {
+  if (o.shape == ObstacleShape::Box) return 12;
+  if (o.shape == ObstacleShape::Mesh && o.edges) return static_cast<int>(o.edges->size());
+  return 0;
+}
+
+// Corner c of a box (bit k set: the upper side on axis k, as body_points
+// numbers them), fixed (axis-aligned, from `a` to `b`) or a body.
+inline Vec<3> box_corner(const Obstacle<3>& o, int c) {
+  Vec<3> x;
+  if (!o.dynamic) {
+    for (int k = 0; k < 3; ++k) x[k] = (c >> k & 1) ? o.b[k] : o.a[k];
+    return x;
+  }
+  for (int k = 0; k < 3; ++k) x[k] = (c >> k & 1) ? o.b[k] : -o.b[k];
+  return o.a + o.rotation * x;
+}
+
+// The edges of o (a box's 12, a mesh's convex ones) that come within
+// `reach` of `centre`, into `out` (emptied first).
+inline void solid_edges(const Obstacle<3>& o, const Vec<3>& centre, double reach,
+                        std::vector<SolidEdge>& out) {
+  out.clear();
+  const auto keep = [&](const SolidEdge& e) {
+    const SegmentPair c = closest_points(e.from, e.to, centre, centre);
+    if ((c.p - centre).squaredNorm() < reach * reach) out.push_back(e);
+  };
+  if (o.shape == ObstacleShape::Box) {
+    // Edge k * 4 + i along axis k joins corner c (bit k clear) to c + 2^k;
+    // its faces are the sides of the other two axes that c's bits give.
+    const double half = std::sqrt(0.5);
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 4; ++i) {
+        const int low = i & ((1 << k) - 1), high = (i >> k) << (k + 1);
+        const int c = high | low;
+        Vec<3> out_dir = Vec<3>::Zero();
+        for (int j = 0; j < 3; ++j)
+          if (j != k) out_dir[j] = (c >> j & 1) ? half : -half;
+        keep({box_corner(o, c), box_corner(o, c | 1 << k), o.rotation * out_dir, half, k * 4 + i});
+      }
+  } else if (o.shape == ObstacleShape::Mesh && o.edges) {
+    const auto place = [&o](const Point3& p) {
+      const Vec<3> x(p[0], p[1], p[2]);
+      return o.dynamic ? Vec<3>(o.a + o.rotation * (x - o.b)) : Vec<3>(x + o.a);
+    };
+    const auto& edges = *o.edges;
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      const FeatureEdge& e = edges[k];
+      const Vec<3> b(e.bisector[0], e.bisector[1], e.bisector[2]);
+      keep({place(e.from), place(e.to), o.rotation * b, e.cos_half, static_cast<int>(k)});
+    }
+  }
+}
+
+// How far direction n (unit, across the edge) lies within the edge's
+// normal cone widened by kConeSlack: n . bisector - cos(half + slack),
+// negative outside. The slack keeps the rows of a face resting flat on
+// another (n on the cones' rims) when round-off or a slight tilt puts n
+// just outside.
+inline double cone_margin(const SolidEdge& e, const Vec<3>& n) {
+  constexpr double kConeSlack = 0.01;  // rad
+  const double sin_half = std::sqrt(std::max(0.0, 1.0 - e.cos_half * e.cos_half));
+  return n.dot(e.bisector) - (e.cos_half * std::cos(kConeSlack) - sin_half * std::sin(kConeSlack));
+}
+
+// An edge of a body crossing an edge of another solid: the closest points,
+// the unit normal from the body to the solid, the separation along it (m,
+// negative where they overlap), and the pair's number (the body's edge
+// index times the solid's edge count, plus the solid's edge index).
+struct EdgeContact {
+  Vec<3> on_body, on_solid, normal;
+  double separation;
+  std::int64_t pair;
+};
+
+// The pair of edges as a contact, when it is one: the closest points
+// strictly inside both edges (an end is a corner, which has its own rows),
+// the edges not parallel, and the separation along the normal n = +-(e1 x
+// e2) within a cell either way (further inside is not a contact to
+// resolve). The sign: the one for which n leaves the body's edge within
+// its normal cone and -n leaves the solid's within its own, when one does
+// (the edges can touch there: the plane across both separates the solids
+// near them; a negative separation is then an overlap to stop). When
+// neither does, the edges cross only where a face of one passes the
+// other's edge (the far lower edge of a plank rolling onto a beam, not yet
+// down): passing through each other would still bring the solids into each
+// other, so n keeps the edges on the sides they are on.
+inline bool edge_contact(const SolidEdge& body, const SolidEdge& solid, double h,
+                         EdgeContact* out) {
+  constexpr double kInside = 1e-6;    // of the edge's length, from either end
+  constexpr double kParallel = 1e-3;  // sine of the angle between the edges
+  const SegmentPair c = closest_points(body.from, body.to, solid.from, solid.to);
+  const auto inside = [](double s) { return s > kInside && s < 1.0 - kInside; };
+  if (!inside(c.s) || !inside(c.t)) return false;
+  const Vec<3> e1 = body.to - body.from, e2 = solid.to - solid.from;
+  const Vec<3> axis = e1.cross(e2);
+  const double len = axis.norm();
+  if (!(len > kParallel * e1.norm() * e2.norm())) return false;
+  Vec<3> n = axis / len;
+  const double plus = std::min(cone_margin(body, n), cone_margin(solid, -n));
+  const double minus = std::min(cone_margin(body, -n), cone_margin(solid, n));
+  if (plus >= 0.0 || minus >= 0.0) {
+    if (minus > plus) n = -n;
+  } else {
+    const double along = (c.q - c.p).dot(n);
+    if (along == 0.0) return false;
+    if (along < 0.0) n = -n;
+  }
+  const double separation = (c.q - c.p).dot(n);
+  if (!(std::abs(separation) < h)) return false;
+  *out = {c.p, c.q, n, separation, 0};
+  return true;
+}
+
+// Reused between calls: the edges near each other.
+struct EdgeScratch {
+  std::vector<SolidEdge> body, solid;
+};
+
+// The crossings of body o's edges with solid q's within h (q a fixed box
+// or mesh or another body; no rows for other shapes), into `out`.
+inline void edge_contacts(const Obstacle<3>& o, const Obstacle<3>& q, double h, EdgeScratch& w,
+                          std::vector<EdgeContact>& out) {
+  out.clear();
+  if (q.gone || edge_count(o) == 0 || edge_count(q) == 0) return;
+  solid_edges(q, o.a, bounding_radius(o) + h, w.solid);
+  if (w.solid.empty()) return;
+  // The body's edges near the box around those.
+  Vec<3> lo = Vec<3>::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const SolidEdge& e : w.solid) {
+    lo = lo.cwiseMin(e.from).cwiseMin(e.to);
+    hi = hi.cwiseMax(e.from).cwiseMax(e.to);
+  }
+  solid_edges(o, 0.5 * (lo + hi), 0.5 * (hi - lo).norm() + h, w.body);
+  const std::int64_t count = edge_count(q);
+  for (const SolidEdge& b : w.body)
+    for (const SolidEdge& s : w.solid) {
+      // Segments whose bounding spheres are over a cell apart cannot touch.
+      const double r = 0.5 * ((b.to - b.from).norm() + (s.to - s.from).norm()) + h;
+      if ((0.5 * (b.from + b.to - s.from - s.to)).squaredNorm() >= r * r) continue;
+      EdgeContact c;
+      if (!edge_contact(b, s, h, &c)) continue;
+      c.pair = b.index * count + s.index;
+      out.push_back(c);
+    }
+}
+
+}  // namespace sablier
