@@ -19,6 +19,7 @@
 #include "progress.hpp"
 #include "run_record.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_obstacles.hpp"
 
 namespace sablier {
 
@@ -58,6 +59,14 @@ std::size_t count_bodies(const SceneConfig& scene) {
 }
 
 bool has_bodies(const SceneConfig& scene) { return count_bodies(scene) > 0; }
+
+// Whether frames/bodies_NNNNN.vtp are written: the scene has rigid bodies or
+// solids driven into the sand.
+bool has_moving_solids(const SceneConfig& scene) {
+  for (const ObstacleConfig& o : scene.obstacles)
+    if (o.dynamic() || moves_into_sand(o, scene.dimension)) return true;
+  return false;
+}
 
 bool holds_run_outputs(const fs::path& dir) {
   for (const char* f : kRunFiles)
@@ -148,7 +157,7 @@ class Runner {
     if (writes("vtp"))
       for (std::size_t f = 0; f < frame_times_.size(); ++f) {
         series_.push_back({frame_times_[f], frame_name(static_cast<int>(f), "vtp")});
-        if (has_bodies(scene_))
+        if (has_moving_solids(scene_))
           bodies_series_.push_back({frame_times_[f], bodies_name(static_cast<int>(f))});
       }
     if (set_.grid)
@@ -272,7 +281,7 @@ class Runner {
       write_file_atomic(base + "vtp", format_vtp(frame, compression()));
       series_.push_back({frame.time, frame_name(f, "vtp")});
       write_file_atomic((set_.dir / "series.pvd").string(), format_pvd(series_));
-      if (has_bodies(scene_)) write_bodies(f, frame.time);
+      if (has_moving_solids(scene_)) write_bodies(f, frame.time);
     }
     if (writes("csv")) write_file_atomic(base + "csv", format_particle_csv(frame));
     if (writes("ply")) write_file_atomic(base + "ply", format_ply(frame));
@@ -288,8 +297,8 @@ class Runner {
     return set_.compress ? VtkCompression::Zlib : VtkCompression::None;
   }
 
-  // The rigid bodies' surfaces where they are (frames/bodies_NNNNN.vtp, a
-  // series of its own for ParaView).
+  // The rigid bodies' and moving solids' surfaces where they are
+  // (frames/bodies_NNNNN.vtp, a series of its own for ParaView).
   void write_bodies(int f, double time) {
     std::vector<ObstacleConfig> posed = scene_.obstacles;
     const auto& bodies = sim_.obstacles();
@@ -300,7 +309,7 @@ class Runner {
       posed[k] =
           posed_body(scene_.obstacles[k], centre, bodies[k].angle, bodies[k].quaternion.data(), D);
     }
-    write_file_atomic((set_.dir / bodies_name(f)).string(), format_bodies_vtp(posed, scene_));
+    write_file_atomic((set_.dir / bodies_name(f)).string(), format_bodies_vtp(posed, scene_, time));
     bodies_series_.push_back({time, bodies_name(f)});
     write_file_atomic((set_.dir / "bodies_series.pvd").string(), format_pvd(bodies_series_));
   }
@@ -413,8 +422,9 @@ int start_run(const RunOptions& opt) {
       }
       remove_run_outputs(dir);
     }
-    RunSettings set{dir,          opt.formats, opt.quiet, opt.stop_after_frame,
-                    scene_to_toml(scene), opt.compress, opt.grid};
+    RunSettings set{
+        dir,          opt.formats, opt.quiet, opt.stop_after_frame, scene_to_toml(scene),
+        opt.compress, opt.grid};
     ensure_directory((dir / "frames").string());
     write_file_atomic((dir / "scene.toml").string(), set.scene_text);
     if (const std::string obj = format_obstacles_obj(scene); !obj.empty())

@@ -10,10 +10,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "io/writers.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_reader.hpp"
@@ -159,6 +161,24 @@ TEST(MovingSolids, ProjectionLeavesABedAtRest2D) {
             << " m/s, largest phi " << largest_phi(sim) << "\n";
   EXPECT_LT(fastest, 1e-3);
   EXPECT_LT(largest_phi(sim), 0.61);
+}
+
+// ParaView sees a moving solid where it is: `sablier run` writes its
+// surface at each frame to frames/bodies_NNNNN.vtp (with the rigid
+// bodies'), moved by its velocity times the frame's time, and leaves it out
+// of obstacles.obj (the fixed solids' surfaces).
+TEST(MovingSolids, FramesShowTheBladeWhereItIs) {
+  const auto dir = test::fresh_dir("moving_solid_frames");
+  const test::Result r = test::sablier("run " + test::scene_file("plough2d.toml") + " --out " +
+                                       dir.string() + " --quiet --set time.frames=3");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string first = read_file((dir / "frames/bodies_00000.vtp").string());
+  const std::string last = read_file((dir / "frames/bodies_00003.vtp").string());
+  // The blade's lower left corner: (0.05, -0.05) at 0 s, 0.1 m/s x 0.1 s further at frame 3.
+  EXPECT_NE(first.find("0.050000000000000003 -0.050000000000000003 0\n"), std::string::npos)
+      << first;
+  EXPECT_NE(last.find("0.060000000000000005 -0.050000000000000003 0\n"), std::string::npos) << last;
+  EXPECT_FALSE(std::filesystem::exists(dir / "obstacles.obj"));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/mesh.hpp"
+#include "scene/scene_obstacles.hpp"
 
 namespace sablier {
 namespace {
@@ -194,7 +195,7 @@ std::string format_obstacles_obj(const SceneConfig& scene) {
   int base = 1;  // OBJ indices count from 1 over the whole file
   for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
     const ObstacleConfig& o = scene.obstacles[k];
-    if (o.dynamic()) continue;
+    if (o.dynamic() || moves_into_sand(o, scene.dimension)) continue;  // in bodies_NNNNN.vtp
     const Shape g = shape_of(o, scene);
     if (g.faces.empty()) continue;
     out += fmt::format("o obstacle_{}\n", k);
@@ -239,14 +240,18 @@ ObstacleConfig posed_body(const ObstacleConfig& start, const double centre[3], d
 }
 
 std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles,
-                              const SceneConfig& scene) {
+                              const SceneConfig& scene, double time) {
   const int d = scene.dimension;
   std::vector<P3> points;
   std::vector<std::vector<int>> cells;  // point indices over the whole file
   std::vector<int> owner;
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
-    if (!obstacles[k].dynamic()) continue;
-    const Shape g = shape_of(obstacles[k], scene);
+    const bool moving = moves_into_sand(obstacles[k], d);
+    if (!obstacles[k].dynamic() && !moving) continue;
+    Shape g = shape_of(obstacles[k], scene);
+    if (moving)  // where its velocity has taken it
+      for (P3& p : g.v)
+        for (int a = 0; a < d; ++a) p[a] += time * obstacles[k].velocity[a];
     const int base = static_cast<int>(points.size());
     points.insert(points.end(), g.v.begin(), g.v.end());
     for (const std::vector<int>& f : g.faces) {

@@ -27,12 +27,13 @@ std::string format_obstacles_obj(const SceneConfig& scene);
 ObstacleConfig posed_body(const ObstacleConfig& start, const double centre[3], double angle,
                           const double quaternion[4], int dimension);
 
-// The rigid bodies among `obstacles` (posed: posed_body) as VTK XML
+// The rigid bodies among `obstacles` (posed: posed_body) and the solids
+// driven into the sand (moved to where they are at `time`, s) as VTK XML
 // PolyData (ASCII) for ParaView: 3D surfaces as polygons, 2D outlines as
-// closed lines in the z = 0 plane, each cell with the body's obstacle index
-// (cell array `obstacle`). A turned body's surface is turned with it (a
-// ball's tessellation too, so that its rolling shows).
+// closed lines in the z = 0 plane, each cell with the solid's obstacle
+// index (cell array `obstacle`). A turned body's surface is turned with it
+// (a ball's tessellation too, so that its rolling shows).
 std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles,
-                              const SceneConfig& scene);
+                              const SceneConfig& scene, double time = 0.0);
 
 }  // namespace sablier

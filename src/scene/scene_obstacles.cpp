@@ -136,7 +136,7 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
 // 0.4 m/s and compacted it to phi 1.1, with solves at their cap).
 // Whether a fixed obstacle translates (a velocity, other than a plane's
 // along itself, which leaves its solid in place: a conveyor belt).
-bool moves_into_sand(const ObstacleConfig& o, int d) {
+bool translates(const ObstacleConfig& o, int d) {
   const double speed = length(o.velocity);
   if (speed == 0.0 || o.dynamic()) return false;
   if (o.shape != ObstacleShape::Plane) return true;
@@ -150,7 +150,7 @@ bool moves_into_sand(const ObstacleConfig& o, int d) {
 // moves do not keep up with it (docs/method.md, "Solids driven into the
 // sand"). Without a `solver.decompaction` key the scene takes it.
 void check_motion(TableReader& t, const ObstacleConfig& o, SceneConfig& s) {
-  if (!moves_into_sand(o, s.dimension)) return;
+  if (!translates(o, s.dimension)) return;
   if (!s.solver.decompaction_given) s.solver.decompaction = Decompaction::Project;
   if (s.solver.decompaction == Decompaction::Project) return;
   t.fail_at(t.node("velocity"), "velocity",
@@ -274,7 +274,7 @@ void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Po
     lo[a] = o.extent_min[a] - margin;
     hi[a] = o.extent_max[a] + margin;
     // A body goes anywhere, a moving solid through the box: sampled whole.
-    if (o.dynamic() || moves_into_sand(o, s.dimension)) continue;
+    if (o.dynamic() || translates(o, s.dimension)) continue;
     lo[a] = std::max(lo[a], -margin);
     hi[a] = std::min(hi[a], s.size[a] + margin);
   }
@@ -464,6 +464,8 @@ ObstacleConfig read_obstacle(TableReader t, SceneConfig& s) {
 }
 
 }  // namespace
+
+bool moves_into_sand(const ObstacleConfig& o, int dimension) { return translates(o, dimension); }
 
 void read_all_obstacles(TableReader& root, SceneConfig& s) {
   s.obstacles.clear();

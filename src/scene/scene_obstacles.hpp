@@ -15,6 +15,11 @@ namespace sablier {
 // The [[obstacle]] blocks (none if absent).
 void read_all_obstacles(TableReader& root, SceneConfig& s);
 
+// Whether a fixed obstacle translates (obstacle[].velocity, other than a
+// plane's along itself, which leaves its solid in place: a conveyor belt):
+// a solid driven into the sand.
+bool moves_into_sand(const ObstacleConfig& o, int dimension);
+
 // The scene file's name of a shape: Ball is "disk" in 2D, "sphere" in 3D.
 const char* obstacle_shape_name(ObstacleShape shape, int dimension);
 
