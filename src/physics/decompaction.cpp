@@ -185,11 +185,12 @@ double Simulation<D>::project_grains_apart(int rounds, double dt) {
   project_q_.resize(nodes);
   project_capacity_.resize(nodes);
   project_full_.resize(nodes);
-  for (int round = 0; round < rounds; ++round) {
+  // Rounds, then one more look at where the last one left the grains.
+  for (int round = 0; round <= rounds; ++round) {
     grain_volume_at_positions();  // Phi into move_excess_
-    // Capacities, and whether any node is over its own.
-    bool crowded = false;
-#pragma omp parallel for schedule(static) reduction(|| : crowded)
+    // Capacities, and the largest excess over them (of phi_max V_j).
+    double over = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : over)
     for (std::int64_t i = 0; i < nodes; ++i) {
       project_q_[i] = 0.0;
       if (!(move_excess_[i] > 0.0)) continue;
@@ -203,9 +204,10 @@ double Simulation<D>::project_grains_apart(int rounds, double dt) {
         solid = solid_fraction(obstacle_distance(obstacles_end, x, &normal), h);
       project_full_[i] = full;
       project_capacity_[i] = full * (1.0 - solid);
-      crowded = crowded || move_excess_[i] > project_capacity_[i] + kProjectSlack * full;
+      over = std::max(over, (move_excess_[i] - project_capacity_[i]) / full);
     }
-    if (!crowded) break;
+    project_left_ = over;
+    if (over <= kProjectSlack || round == rounds) break;
     // L, row by row, each node's row summed in particle order.
     project_L_.assign(nodes * NS, 0.0);
     scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,

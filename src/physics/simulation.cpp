@@ -337,8 +337,10 @@ StepInfo Simulation<D>::step(double dt) {
   transfer_to_particles(dt);
   if (scene_.solver.decompaction == Decompaction::Move)
     info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
-  if (scene_.solver.decompaction == Decompaction::Project)
+  if (scene_.solver.decompaction == Decompaction::Project) {
     info.restoring_work += project_grains_apart(scene_.solver.decompaction_moves, dt);
+    info.crowding = project_left_;
+  }
   info.timings.advection = seconds_since(t0);
 
   info.active_nodes = obstacle_row_start_;  // sand nodes (obstacle rows are extra)

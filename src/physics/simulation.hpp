@@ -39,6 +39,11 @@ struct StepInfo {
   // problem pushes them apart; the work against gravity of the grains
   // lifted when they are moved instead (solver.decompaction = "move").
   double restoring_work = 0.0;
+  // solver.decompaction = "project": the largest excess of a node's grain
+  // volume over its capacity left after the step's projection, in units of
+  // phi_max V_j (above 1e-3 only where the grains cannot get out of the
+  // way: sand confined by a solid pressing on it).
+  double crowding = 0.0;
   // Force the sand exerts on each [[obstacle]] over the step (N; N/m in 2D),
   // the reaction to the obstacle rows' stresses.
   std::vector<Vec3d> obstacle_force;
@@ -201,6 +206,7 @@ class Simulation {
   // sum_p V_p grad N_j . grad N_k), its capacity and potential; the nodes
   // holding grains, by colour (coordinate parities).
   std::vector<double> project_L_, project_full_, project_capacity_, project_q_;
+  double project_left_ = 0.0;  // the last projection's largest excess left (StepInfo::crowding)
   std::array<std::vector<std::int64_t>, ipow(2, D)> project_nodes_;
 
   // Obstacles (METHOD.md section 3): rows [obstacle_row_start_, rows) are
