@@ -145,6 +145,11 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
   return lift;
 }
 
+namespace {
+constexpr double kProjectSlack = 1e-3;  // of phi_max V_j
+constexpr int kProjectSweeps = 200;     // at most, per round
+}  // namespace
+
 // The projection (solver.decompaction = "project"): node potentials q >= 0
 // such that moving every grain by d_p = -sum_k q_k grad N_k(x_p) takes each
 // node's grain volume back to its capacity, to first order: Phi - L q <= C,
@@ -162,17 +167,58 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
 // no node is more than kProjectSlack over its capacity.
 template <int D>
 double Simulation<D>::project_grains_apart(int rounds, double dt) {
-  constexpr int NC = ipow(2, D), NS = ipow(3, D);
-  constexpr double kProjectSlack = 1e-3;  // of phi_max V_j
-  constexpr int kMaxSweeps = 200;
-  const auto corner = grid_.corner_offsets();
-  const auto neighbour = grid_.stencil_offsets();
+  const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
+  move_lift_.assign(particles_.size(), 0.0);
+  // Rounds, then one more look at where the last one left the grains.
+  for (int round = 0; round <= rounds; ++round) {
+    grain_volume_at_positions();  // Phi into move_excess_
+    project_left_ = project_capacities(obstacles_end);
+    if (project_left_ <= kProjectSlack || round == rounds) break;
+    project_assemble();
+    project_potentials();
+    project_move(obstacles_end, dt);
+  }
+  double lift = 0.0;  // in particle order
+  for (double w : move_lift_) lift += w;
+  return lift;
+}
+
+// Each node's capacity C_j = phi_max V_j (1 - s_j); the largest excess of
+// Phi_j over it, in units of phi_max V_j; potentials reset to zero.
+template <int D>
+double Simulation<D>::project_capacities(const std::vector<Obstacle<D>>& obstacles_end) {
   const double h = grid_.h();
-  const auto& cells = grid_.cells();
-  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+  const std::int64_t nodes = grid_.node_count();
+  project_q_.assign(nodes, 0.0);
+  project_capacity_.resize(nodes);
+  project_full_.resize(nodes);
+  double over = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : over)
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    if (!(move_excess_[i] > 0.0)) continue;
+    const auto nc = grid_.node_coords(i);
+    Vec<D> x, normal;
+    for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
+    const double full = phi_max_ * grid_.node_volume(nc);
+    const double solid = obstacles_end.empty()
+                             ? 0.0
+                             : solid_fraction(obstacle_distance(obstacles_end, x, &normal), h);
+    project_full_[i] = full;
+    project_capacity_[i] = full * (1.0 - solid);
+    over = std::max(over, (move_excess_[i] - project_capacity_[i]) / full);
+  }
+  return over;
+}
+
+// L_jk = sum_p V_p grad N_j(x_p) . grad N_k(x_p), each node's row of 3^d
+// neighbours summed in particle order; the nodes holding grains, by colour
+// (coordinate parities), in index order.
+template <int D>
+void Simulation<D>::project_assemble() {
+  constexpr int NC = ipow(2, D), NS = ipow(3, D);
+  const auto corner = grid_.corner_offsets();
   const std::int64_t nodes = grid_.node_count();
   const std::int64_t top_stride = grid_.node_stride(D - 1);
-  const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
   // Slot in a node's row of L of corner b seen from corner a of one cell.
   int slot[NC][NC];
   for (int a = 0; a < NC; ++a)
@@ -181,115 +227,109 @@ double Simulation<D>::project_grains_apart(int rounds, double dt) {
       for (int ax = 0; ax < D; ++ax, w *= 3) k += (((b >> ax) & 1) - ((a >> ax) & 1) + 1) * w;
       slot[a][b] = k;
     }
-  move_lift_.assign(n, 0.0);
-  project_q_.resize(nodes);
-  project_capacity_.resize(nodes);
-  project_full_.resize(nodes);
-  // Rounds, then one more look at where the last one left the grains.
-  for (int round = 0; round <= rounds; ++round) {
-    grain_volume_at_positions();  // Phi into move_excess_
-    // Capacities, and the largest excess over them (of phi_max V_j).
-    double over = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : over)
-    for (std::int64_t i = 0; i < nodes; ++i) {
-      project_q_[i] = 0.0;
-      if (!(move_excess_[i] > 0.0)) continue;
-      const auto nc = grid_.node_coords(i);
-      Vec<D> x;
-      for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
-      const double full = phi_max_ * grid_.node_volume(nc);
-      double solid = 0.0;
-      Vec<D> normal;
-      if (!obstacles_end.empty())
-        solid = solid_fraction(obstacle_distance(obstacles_end, x, &normal), h);
-      project_full_[i] = full;
-      project_capacity_[i] = full * (1.0 - solid);
-      over = std::max(over, (move_excess_[i] - project_capacity_[i]) / full);
-    }
-    project_left_ = over;
-    if (over <= kProjectSlack || round == rounds) break;
-    // L, row by row, each node's row summed in particle order.
-    project_L_.assign(nodes * NS, 0.0);
-    scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
-                         [&](std::int64_t p, unsigned mask) {
-                           std::int64_t base = 0;
-                           const Q1Stencil<D> s = stencil_at(particles_.position[p], &base);
-                           const double v = particles_.volume[p];
-                           for (int a = 0; a < NC; ++a) {
-                             if (!(mask >> a & 1)) continue;
-                             double* row = project_L_.data() + (base + corner[a]) * NS;
-                             for (int b = 0; b < NC; ++b)
-                               row[slot[a][b]] += v * s.grad[a].dot(s.grad[b]);
-                           }
-                         });
-    // The nodes holding grains, by colour, in index order.
-    for (auto& list : project_nodes_) list.clear();
-    for (std::int64_t i = 0; i < nodes; ++i) {
-      if (!(move_excess_[i] > 0.0) || !(project_L_[i * NS + NS / 2] > 0.0)) continue;
-      const auto nc = grid_.node_coords(i);
-      int colour = 0;
-      for (int a = 0; a < D; ++a) colour |= (nc[a] & 1) << a;
-      project_nodes_[colour].push_back(i);
-    }
-    for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
-      double worst = 0.0;  // the largest excess over capacity before this sweep's updates
-      for (const auto& list : project_nodes_) {
-        const std::int64_t m = static_cast<std::int64_t>(list.size());
-#pragma omp parallel for schedule(static) reduction(max : worst)
-        for (std::int64_t k = 0; k < m; ++k) {
-          const std::int64_t i = list[k];
-          const double* row = project_L_.data() + i * NS;
-          double lq = 0.0;
-          for (int t = 0; t < NS; ++t) lq += row[t] * project_q_[i + neighbour[t]];
-          const double excess = move_excess_[i] - lq - project_capacity_[i];
-          const double q = std::max(0.0, project_q_[i] + excess / row[NS / 2]);
-          if (q > 0.0 || project_q_[i] > 0.0)
-            worst = std::max(worst, std::abs(excess) / project_full_[i]);
-          project_q_[i] = q;
-        }
-      }
-      if (worst <= kProjectSlack) break;
-    }
-    // Move the grains.
-#pragma omp parallel for schedule(static)
-    for (std::int64_t p = 0; p < n; ++p) {
-      const std::int64_t base = move_base_[p];
-      if (base < 0) continue;
-      bool near = false;  // a corner of its cell has a potential (else the move is zero)
-      for (int a = 0; a < NC; ++a) near = near || project_q_[base + corner[a]] > 0.0;
-      if (!near) continue;
-      Vec<D>& x = particles_.position[p];
-      std::int64_t again = 0;
-      const Q1Stencil<D> s = stencil_at(x, &again);
-      Vec<D> d = Vec<D>::Zero();
-      for (int a = 0; a < NC; ++a) d -= project_q_[base + corner[a]] * s.grad[a];
-      const double len = d.norm();
-      if (len == 0.0) continue;
-      Vec<D> y = x + d;
-      for (int a = 0; a < D; ++a) y[a] = std::clamp(y[a], 1e-6 * h, cells[a] * h - 1e-6 * h);
-      if (!obstacles_end.empty()) {
-        Vec<D> normal;
-        const double dist = obstacle_distance(obstacles_end, y, &normal);
-        if (dist < 0.0) y -= (dist - 1e-6 * h) * normal;
-      }
-      move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(y - x));
-      x = y;
-      Vec<D>& u = particles_.velocity[p];
-      const Vec<D> dir = d / len;
-      const double against = -u.dot(dir);
-      if (against > 0.0) u += std::min(against, len / dt) * dir;
-    }
+  project_L_.assign(nodes * NS, 0.0);
+  scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
+                       [&](std::int64_t p, unsigned mask) {
+                         std::int64_t base = 0;
+                         const Q1Stencil<D> s = stencil_at(particles_.position[p], &base);
+                         const double v = particles_.volume[p];
+                         for (int a = 0; a < NC; ++a) {
+                           if (!(mask >> a & 1)) continue;
+                           double* row = project_L_.data() + (base + corner[a]) * NS;
+                           for (int b = 0; b < NC; ++b)
+                             row[slot[a][b]] += v * s.grad[a].dot(s.grad[b]);
+                         }
+                       });
+  for (auto& list : project_nodes_) list.clear();
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    if (!(move_excess_[i] > 0.0) || !(project_L_[i * NS + NS / 2] > 0.0)) continue;
+    const auto nc = grid_.node_coords(i);
+    int colour = 0;
+    for (int a = 0; a < D; ++a) colour |= (nc[a] & 1) << a;
+    project_nodes_[colour].push_back(i);
   }
-  double lift = 0.0;  // in particle order
-  for (double w : move_lift_) lift += w;
-  return lift;
+}
+
+// Projected Gauss-Seidel on Phi - L q <= C, q >= 0, complementarity:
+// q_j <- max(0, q_j + (Phi_j - (L q)_j - C_j) / L_jj), colour by colour,
+// until no node is more than kProjectSlack off.
+template <int D>
+void Simulation<D>::project_potentials() {
+  constexpr int NS = ipow(3, D);
+  const auto neighbour = grid_.stencil_offsets();
+  for (int sweep = 0; sweep < kProjectSweeps; ++sweep) {
+    double worst = 0.0;  // the largest miss of this sweep's updates, of phi_max V_j
+    for (const auto& list : project_nodes_) {
+      const std::int64_t m = static_cast<std::int64_t>(list.size());
+#pragma omp parallel for schedule(static) reduction(max : worst)
+      for (std::int64_t k = 0; k < m; ++k) {
+        const std::int64_t i = list[k];
+        const double* row = project_L_.data() + i * NS;
+        double lq = 0.0;
+        for (int t = 0; t < NS; ++t) lq += row[t] * project_q_[i + neighbour[t]];
+        const double excess = move_excess_[i] - lq - project_capacity_[i];
+        const double q = std::max(0.0, project_q_[i] + excess / row[NS / 2]);
+        if (q > 0.0 || project_q_[i] > 0.0)
+          worst = std::max(worst, std::abs(excess) / project_full_[i]);
+        project_q_[i] = q;
+      }
+    }
+    if (worst <= kProjectSlack) break;
+  }
+}
+
+// Each grain moves by d_p = -sum_k q_k grad N_k(x_p), kept inside the box
+// and put back on the surface of a solid it would enter (as in advection);
+// the part of its velocity against d_p is removed up to |d_p| / dt.
+template <int D>
+void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt) {
+  constexpr int NC = ipow(2, D);
+  const auto corner = grid_.corner_offsets();
+  const double h = grid_.h();
+  const auto& cells = grid_.cells();
+  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    const std::int64_t base = move_base_[p];
+    if (base < 0) continue;
+    bool near = false;  // a corner of its cell has a potential (else the move is zero)
+    for (int a = 0; a < NC; ++a) near = near || project_q_[base + corner[a]] > 0.0;
+    if (!near) continue;
+    Vec<D>& x = particles_.position[p];
+    std::int64_t again = 0;
+    const Q1Stencil<D> s = stencil_at(x, &again);
+    Vec<D> d = Vec<D>::Zero();
+    for (int a = 0; a < NC; ++a) d -= project_q_[base + corner[a]] * s.grad[a];
+    const double len = d.norm();
+    if (len == 0.0) continue;
+    Vec<D> y = x + d;
+    for (int a = 0; a < D; ++a) y[a] = std::clamp(y[a], 1e-6 * h, cells[a] * h - 1e-6 * h);
+    if (!obstacles_end.empty()) {
+      Vec<D> normal;
+      const double dist = obstacle_distance(obstacles_end, y, &normal);
+      if (dist < 0.0) y -= (dist - 1e-6 * h) * normal;
+    }
+    move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(y - x));
+    x = y;
+    Vec<D>& u = particles_.velocity[p];
+    const Vec<D> dir = d / len;
+    const double against = -u.dot(dir);
+    if (against > 0.0) u += std::min(against, len / dt) * dir;
+  }
 }
 
 template double Simulation<2>::move_grains_apart(int, double);
 template double Simulation<3>::move_grains_apart(int, double);
 template double Simulation<2>::project_grains_apart(int, double);
 template double Simulation<3>::project_grains_apart(int, double);
-template void Simulation<2>::grain_volume_at_positions();
-template void Simulation<3>::grain_volume_at_positions();
+#define SABLIER_INSTANTIATE(D)                                                        \
+  template double Simulation<D>::project_capacities(const std::vector<Obstacle<D>>&); \
+  template void Simulation<D>::project_assemble();                                    \
+  template void Simulation<D>::project_potentials();                                  \
+  template void Simulation<D>::project_move(const std::vector<Obstacle<D>>&, double); \
+  template void Simulation<D>::grain_volume_at_positions();
+SABLIER_INSTANTIATE(2)
+SABLIER_INSTANTIATE(3)
+#undef SABLIER_INSTANTIATE
 
 }  // namespace sablier

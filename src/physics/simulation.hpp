@@ -154,6 +154,12 @@ class Simulation {
   // potentials that take every node back to its capacity (decompaction.cpp);
   // returns the work done against gravity, as move_grains_apart.
   double project_grains_apart(int rounds, double dt);
+  // Its steps (decompaction.cpp): capacities (returns the largest excess),
+  // the matrix L and the colours, the potentials, the grains' moves.
+  double project_capacities(const std::vector<Obstacle<D>>& obstacles_end);
+  void project_assemble();
+  void project_potentials();
+  void project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt);
   // Phi_i at the grains' present positions into move_excess_ (and each
   // grain's cell base node into move_base_, -1 outside the box).
   void grain_volume_at_positions();
