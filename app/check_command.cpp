@@ -103,10 +103,23 @@ void print_obstacles(const SceneConfig& s) {
                           "{} m/s",
                           o.density, mass, d == 2 ? "kg/m" : "kg", point(o.velocity, d))
                     : "";
+    std::string motion;  // a fixed solid's: translating, turning
+    const bool spins = o.spin[0] != 0.0 || o.spin[1] != 0.0 || o.spin[2] != 0.0;
+    if (!o.dynamic() && (o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh) &&
+        o.angle_degrees != 0.0)
+      motion += d == 2 ? fmt::format(", turned {:.6g} degrees", o.angle_degrees)
+                       : fmt::format(", turned {:.6g} degrees about {}", o.angle_degrees,
+                                     point(o.axis, 3));
+    if (!o.dynamic() && moves_into_sand(o, d)) motion += ", driven into the sand";
+    if (!o.dynamic() && (o.velocity[0] != 0.0 || o.velocity[1] != 0.0 || o.velocity[2] != 0.0))
+      motion += fmt::format(", moving at {} m/s", point(o.velocity, d));
+    if (!o.dynamic() && spins)
+      motion += d == 2 ? fmt::format(", turning at {:.6g} rad/s about its centre", o.spin[2])
+                       : fmt::format(", turning at {} rad/s about its centre", point(o.spin, 3));
     const std::string gone =
         std::isfinite(o.until) ? fmt::format(", taken away at {:.6g} s", o.until) : "";
-    std::printf("  obstacle[%zu] %s %s, mu %g%s%s\n", k, obstacle_shape_name(o.shape, d),
-                where.c_str(), o.mu, body.c_str(), gone.c_str());
+    std::printf("  obstacle[%zu] %s %s, mu %g%s%s%s\n", k, obstacle_shape_name(o.shape, d),
+                where.c_str(), o.mu, body.c_str(), motion.c_str(), gone.c_str());
   }
 }
 

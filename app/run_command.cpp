@@ -312,9 +312,9 @@ class Runner {
   // (frames/bodies_NNNNN.vtp, a series of its own for ParaView).
   void write_bodies(int f, double time) {
     std::vector<ObstacleConfig> posed = scene_.obstacles;
-    const auto& bodies = sim_.obstacles();
+    const auto bodies = sim_.obstacles_at(time);  // bodies as they are, turning solids at `time`
     for (std::size_t k = 0; k < posed.size(); ++k) {
-      if (!bodies[k].dynamic) continue;
+      if (!bodies[k].dynamic && !(bodies[k].posed && moves_into_sand(bodies[k]))) continue;
       double centre[3] = {0, 0, 0};
       for (int a = 0; a < D; ++a) centre[a] = bodies[k].a[a];
       posed[k] =

@@ -134,6 +134,7 @@ Obstacle<3> box_body(const V3& centre, const V3& half, double degrees, const V3&
   Obstacle<3> o;
   o.shape = ObstacleShape::Box;
   o.dynamic = true;
+  o.posed = true;  // laid out as a body
   o.a = centre;
   o.b = half;
   const Eigen::Quaterniond q(Eigen::AngleAxisd(degrees * kPi / 180.0, axis.normalized()));

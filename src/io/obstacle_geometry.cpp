@@ -166,8 +166,8 @@ Shape shape_of(const ObstacleConfig& o, const SceneConfig& s) {
       }
       break;
   }
-  if (o.dynamic()) {
-    // A body turned about its centre by `angle` about `axis` (z in 2D); a
+  if (o.dynamic() || o.posed()) {
+    // A body (or a turned fixed solid) turned about its centre by `angle` about `axis` (z in 2D); a
     // polygon's or mesh's solid, given where the scene had it, moved from
     // its centroid to the body's centre.
     const Eigen::Vector3d axis =
@@ -249,7 +249,7 @@ std::string format_bodies_vtp(const std::vector<ObstacleConfig>& obstacles,
     const bool moving = moves_into_sand(obstacles[k], d);
     if (!obstacles[k].dynamic() && !moving) continue;
     Shape g = shape_of(obstacles[k], scene);
-    if (moving)  // where its velocity has taken it
+    if (moving && !obstacles[k].posed())  // where its velocity has taken it (posed: given posed)
       for (P3& p : g.v)
         for (int a = 0; a < d; ++a) p[a] += time * obstacles[k].velocity[a];
     const int base = static_cast<int>(points.size());

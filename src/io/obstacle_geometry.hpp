@@ -28,7 +28,8 @@ ObstacleConfig posed_body(const ObstacleConfig& start, const double centre[3], d
                           const double quaternion[4], int dimension);
 
 // The rigid bodies among `obstacles` (posed: posed_body) and the solids
-// driven into the sand (moved to where they are at `time`, s) as VTK XML
+// driven into the sand (a turning one posed likewise, one that only
+// translates moved here to where it is at `time`, s) as VTK XML
 // PolyData (ASCII) for ParaView: 3D surfaces as polygons, 2D outlines as
 // closed lines in the z = 0 plane, each cell with the solid's obstacle
 // index (cell array `obstacle`). A turned body's surface is turned with it

@@ -72,10 +72,11 @@ inline int edge_count(const Obstacle<3>& o) {
 }
 
 // Corner c of a box (bit k set: the upper side on axis k, as body_points
-// numbers them), fixed (axis-aligned, from `a` to `b`) or a body.
+// numbers them), fixed (axis-aligned, from `a` to `b`) or posed (a body, or
+// a turned fixed box).
 inline Vec<3> box_corner(const Obstacle<3>& o, int c) {
   Vec<3> x;
-  if (!o.dynamic) {
+  if (!o.posed) {
     for (int k = 0; k < 3; ++k) x[k] = (c >> k & 1) ? o.b[k] : o.a[k];
     return x;
   }
@@ -108,7 +109,7 @@ inline void solid_edges(const Obstacle<3>& o, const Vec<3>& centre, double reach
   } else if (o.shape == ObstacleShape::Mesh && o.edges) {
     const auto place = [&o](const Point3& p) {
       const Vec<3> x(p[0], p[1], p[2]);
-      return o.dynamic ? Vec<3>(o.a + o.rotation * (x - o.b)) : Vec<3>(x + o.a);
+      return o.posed ? Vec<3>(o.a + o.rotation * (x - o.b)) : Vec<3>(x + o.a);
     };
     const auto& edges = *o.edges;
     for (std::size_t k = 0; k < edges.size(); ++k) {

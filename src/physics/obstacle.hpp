@@ -51,6 +51,10 @@ struct Obstacle {
   // world is b + rotation^T (x - a) of the solid; `points` are its corners
   // or vertices there, and `extent` its largest distance from the centroid.
   bool dynamic = false;
+  // Laid out as a body (centre in `a`, `b` and `rotation` as above): every
+  // body, and a fixed box, polygon or mesh that is turned or turns (its
+  // `spin` constant, its orientation at time t set by at_time).
+  bool posed = false;
   double mass = 0.0;
   Mat<D> inertia = Mat<D>::Zero();
   std::shared_ptr<const std::vector<Vec<D>>> points;
@@ -65,8 +69,10 @@ struct Obstacle {
 // plane's along itself, which leaves its solid in place: a conveyor belt).
 template <int D>
 inline bool moves_into_sand(const Obstacle<D>& o) {
+  if (o.dynamic) return false;
+  if (o.posed && o.spin.squaredNorm() > 0.0) return true;  // a turning box, polygon or mesh
   const double speed = o.velocity.norm();
-  if (o.dynamic || speed == 0.0) return false;
+  if (speed == 0.0) return false;
   return o.shape != ObstacleShape::Plane || std::abs(o.velocity.dot(o.b)) > 1e-12 * speed;
 }
 
@@ -174,16 +180,17 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   o.height = c.height;
   o.mu = c.mu;
   for (int k = 0; k < D; ++k) o.velocity[k] = c.velocity[k];
-  if (c.dynamic()) {
+  {  // a body's initial spin, a fixed solid's constant one
     if constexpr (D == 2) {
       o.spin[0] = c.spin[2];
     } else {
       for (int k = 0; k < 3; ++k) o.spin[k] = c.spin[k];
     }
   }
-  if (c.dynamic()) {
+  if (c.dynamic() || c.posed()) {
     constexpr double pi = 3.14159265358979323846;
-    o.dynamic = true;
+    o.dynamic = c.dynamic();
+    o.posed = true;
     if (c.shape == ObstacleShape::Box) {
       const Vec<D> size = o.b - o.a;
       o.a = 0.5 * (o.a + o.b);  // the centre
@@ -252,8 +259,35 @@ Obstacle<D> at_time(Obstacle<D> o, double t) {
   o.gone = t >= o.until - 1e-9;
   const Vec<D> shift = t * o.velocity;
   o.a += shift;
-  if (o.shape == ObstacleShape::Box) o.b += shift;
+  if (o.shape == ObstacleShape::Box && !o.posed) o.b += shift;  // a posed box: half sides
+  if (o.posed && o.spin.squaredNorm() > 0.0) {                  // turned by spin t about its centre
+    if constexpr (D == 2) {
+      o.angle += o.spin[0] * t;
+    } else {
+      const Eigen::Quaterniond start(o.quaternion[0], o.quaternion[1], o.quaternion[2],
+                                     o.quaternion[3]);
+      const Eigen::Quaterniond q =
+          Eigen::Quaterniond(Eigen::AngleAxisd(o.spin.norm() * t, o.spin.normalized())) * start;
+      o.quaternion = {q.w(), q.x(), q.y(), q.z()};
+    }
+    set_orientation(o);
+  }
   return o;
+}
+
+// The velocity of a fixed solid's surface at x: its translation plus its
+// turn about its centre (a ball's, a posed solid's), velocity + spin x (x -
+// a).
+template <int D>
+inline Vec<D> surface_velocity(const Obstacle<D>& o, const Vec<D>& x) {
+  if (o.spin.squaredNorm() == 0.0 || (!o.posed && o.shape != ObstacleShape::Ball))
+    return o.velocity;
+  const Vec<D> r = x - o.a;
+  if constexpr (D == 2) {
+    return o.velocity + o.spin[0] * Vec<D>(-r[1], r[0]);
+  } else {
+    return o.velocity + o.spin.cross(r);
+  }
 }
 
 // The scene's obstacles at time t (s).
@@ -312,7 +346,7 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
       return len - o.radius;
     }
     case ObstacleShape::Box: {
-      if (!o.dynamic) return box_distance<D>(o.a, o.b, x, normal);
+      if (!o.posed) return box_distance<D>(o.a, o.b, x, normal);
       // A box body: the distance in its own frame, the normal turned back.
       const Vec<D> local = o.rotation.transpose() * (x - o.a);
       const double s = box_distance<D>(-o.b, o.b, local, normal);
@@ -322,7 +356,7 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
     case ObstacleShape::Polygon: {
       if constexpr (D == 2) {
         double nx = 0.0, ny = 0.0;
-        if (o.dynamic) {  // the solid as the scene gave it, where x is
+        if (o.posed) {  // the solid as the scene gave it, where x is
           const Vec<D> p = o.b + o.rotation.transpose() * (x - o.a);
           const double s = o.polygon->signed_distance(p[0], p[1], &nx, &ny);
           *normal = o.rotation * Vec<D>(nx, ny);
@@ -337,7 +371,7 @@ inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* nor
     case ObstacleShape::Mesh: {
       if constexpr (D == 3) {
         Point3 n{};
-        if (o.dynamic) {
+        if (o.posed) {
           const Vec<D> p = o.b + o.rotation.transpose() * (x - o.a);
           const double s = o.distance->signed_distance({p[0], p[1], p[2]}, &n);
           *normal = o.rotation * Vec<D>(n[0], n[1], n[2]);

@@ -371,7 +371,8 @@ double Simulation<D>::adaptive_dt(double remaining) const {
   double v = std::max(max_speed(), open_spout_speed(scene_, time_));
   for (const Obstacle<D>& o : obstacles_) {
     if (o.dynamic) v = std::max(v, o.velocity.norm() + o.spin.norm() * bounding_radius(o));
-    if (moves_into_sand(o)) v = std::max(v, o.velocity.norm());  // a solid driven through
+    if (moves_into_sand(o))  // a solid driven through, turning
+      v = std::max(v, o.velocity.norm() + o.spin.norm() * bounding_radius(o));
   }
   const double g = gravity_.norm();
   double dt = remaining;

@@ -182,7 +182,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
                   std::max(gap, 0.0),
                   std::min(o.mu, q.mu),
                   q.dynamic ? static_cast<int>(s) : -1,
-                  q.dynamic ? Vec<D>::Zero() : q.velocity};
+                  q.dynamic ? Vec<D>::Zero()
+                            : surface_velocity(q, Vec<D>(points[t].at - distance * out))};
         c.arm = (points[t].at - o.a) + points[t].reach * n;
         if (q.dynamic)  // the solid's point nearest ours, from its centre
           c.other_arm = q.shape != ObstacleShape::Ball ? Vec<D>(points[t].at - distance * out - q.a)
@@ -200,7 +201,11 @@ void Simulation<D>::transfer_to_grid(double dt) {
       const Obstacle<D>& q = obstacles[s];
       if (q.gone) return;
       corners.clear();
-      if (q.shape == ObstacleShape::Box) {
+      if (q.posed) {
+        body_points(q, corners);  // a turned box's or polygon's corners
+        if constexpr (D == 3)
+          if (q.shape == ObstacleShape::Mesh) corners.clear();  // a mesh's vertices: not seen
+      } else if (q.shape == ObstacleShape::Box) {
         for (int c = 0; c < NC; ++c) {
           Vec<D> x;
           for (int a = 0; a < D; ++a) x[a] = (c >> a & 1) ? q.b[a] : q.a[a];
@@ -223,8 +228,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const std::int64_t key = static_cast<std::int64_t>(s) * count +
                                  static_cast<std::int64_t>(b) +
                                  count * count * (NC + static_cast<std::int64_t>(t));
-        Contact c{ghost_node(key),      n,  static_cast<int>(b), std::max(distance, 0.0),
-                  std::min(o.mu, q.mu), -1, q.velocity};
+        Contact c{ghost_node(key),      n,  static_cast<int>(b),   std::max(distance, 0.0),
+                  std::min(o.mu, q.mu), -1, surface_velocity(q, x)};
         c.arm = x - distance * n - o.a;
         body_contacts.push_back(c);
       }
@@ -253,7 +258,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
                     std::max(e.separation, 0.0),
                     std::min(o.mu, q.mu),
                     q.dynamic ? static_cast<int>(s) : -1,
-                    q.dynamic ? Vec<D>::Zero() : q.velocity};
+                    q.dynamic ? Vec<D>::Zero() : surface_velocity(q, e.on_solid)};
           c.arm = e.on_body - o.a;
           if (q.dynamic) c.other_arm = e.on_solid - q.a;
           body_contacts.push_back(c);
@@ -334,6 +339,12 @@ void Simulation<D>::transfer_to_grid(double dt) {
   contact_other_.clear();
   contact_arm_.clear();
   contact_other_arm_.clear();
+  const auto node_position = [&](std::int64_t node) {
+    const auto nc = grid_.node_coords(node);
+    Vec<D> x;
+    for (int a = 0; a < D; ++a) x[a] = nc[a] * h;
+    return x;
+  };
   for (const auto& list : obstacle_by_colour)
     for (const Contact& c : list) {
       contact_arm_.push_back(c.arm);
@@ -351,10 +362,11 @@ void Simulation<D>::transfer_to_grid(double dt) {
       // -contact_velocity. The solid is given its surface velocity plus
       // gap / dt along n, away from the ball: the ball may close the gap
       // within the step, not pass it.
-      P.contact_velocity.push_back(c.gap >= 0.0
-                                       ? Vec<D>(-c.surface_velocity - (c.gap / dt) * c.normal)
-                                   : obstacles[c.which].dynamic ? Vec<D>::Zero()
-                                                                : obstacles[c.which].velocity);
+      P.contact_velocity.push_back(
+          c.gap >= 0.0 ? Vec<D>(-c.surface_velocity - (c.gap / dt) * c.normal)
+          : obstacles[c.which].dynamic
+              ? Vec<D>::Zero()
+              : surface_velocity(obstacles[c.which], node_position(c.node)));
       ++r;
     }
   row_solid_ = std::move(solid);

@@ -208,17 +208,28 @@ struct ObstacleConfig {
   // sphere or box a rigid body that the sand pushes (two-way coupling,
   // METHOD.md section 3), starting at `velocity` and falling under gravity.
   double density = 0.0;
-  // A rigid body's initial orientation: turned by angle_degrees about its
-  // centre, counter-clockwise about `axis` (3D, a unit vector; z in 2D).
+  // The initial orientation of a rigid body, or of a fixed box, polygon or
+  // mesh: turned by angle_degrees about its centre, counter-clockwise about
+  // `axis` (3D, a unit vector; z in 2D).
   double angle_degrees = 0.0;
   Vec3d axis{0, 0, 1};
-  // A rigid body's initial angular velocity, rad/s about world axes (2D:
-  // spin[2], counter-clockwise, about z).
+  // A rigid body's initial angular velocity, or a fixed solid's constant
+  // one (it turns about its centre at that rate), rad/s about world axes
+  // (2D: spin[2], counter-clockwise, about z).
   Vec3d spin{0, 0, 0};
   // A rigid polygon or mesh: the centroid of its solid as given (the
   // parser's; its `center` starts there), m.
   Vec3d centroid{0, 0, 0};
   bool dynamic() const { return density > 0.0; }
+  // A fixed box, polygon or mesh that is turned or turns: laid out as a
+  // body is (physics/obstacle.hpp), its centre `center` (a polygon's or
+  // mesh's: its centroid).
+  bool posed() const {
+    const bool turning = spin[0] != 0.0 || spin[1] != 0.0 || spin[2] != 0.0;
+    return !dynamic() && (turning || angle_degrees != 0.0) &&
+           (shape == ObstacleShape::Box || shape == ObstacleShape::Polygon ||
+            shape == ObstacleShape::Mesh);
+  }
 };
 
 // The same bound as material.mu. The paper's form (the full tensor in

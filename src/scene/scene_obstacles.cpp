@@ -137,8 +137,10 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
 // Whether a fixed obstacle translates (a velocity, other than a plane's
 // along itself, which leaves its solid in place: a conveyor belt).
 bool translates(const ObstacleConfig& o, int d) {
+  if (o.dynamic()) return false;
+  if (o.posed() && length(o.spin) > 0.0) return true;  // a turning box, polygon or mesh
   const double speed = length(o.velocity);
-  if (speed == 0.0 || o.dynamic()) return false;
+  if (speed == 0.0) return false;
   if (o.shape != ObstacleShape::Plane) return true;
   double normal = 0.0;
   for (int a = 0; a < d; ++a) normal += o.velocity[a] * o.normal[a];
@@ -187,13 +189,22 @@ void check_simple_polygon(TableReader& t, const ObstacleConfig& o) {
 }
 
 // A rigid body's initial orientation: `angle` (degrees, counter-clockwise
-// about its centre) and in 3D `axis` (normalised when read; z by default).
+// about its centre) and in 3D `axis` (normalised when read; z by default);
+// its initial `spin`. A fixed box, polygon or mesh takes them too (turned,
+// turning at a constant rate), a fixed disk or sphere a spin (a roller).
 void read_orientation(TableReader& t, ObstacleConfig& o, int d) {
-  for (const char* key : {"angle", "axis", "spin"})
-    if (t.has(key) && !o.dynamic())
+  const bool solid = o.shape == ObstacleShape::Box || o.shape == ObstacleShape::Polygon ||
+                     o.shape == ObstacleShape::Mesh;
+  for (const char* key : {"angle", "axis", "spin"}) {
+    const bool allowed =
+        o.dynamic() || solid || (o.shape == ObstacleShape::Ball && std::string(key) == "spin");
+    if (t.has(key) && !allowed)
       t.fail_at(t.node(key), key,
-                "only a rigid body turns; allowed: angle, spin (and axis in 3D) on an obstacle "
-                "with a density");
+                fmt::format("a {} does not turn; allowed: angle, spin (and axis in 3D) on a box, "
+                            "{}, or a rigid body; spin on a {} (a roller)",
+                            obstacle_shape_name(o.shape, d), d == 2 ? "polygon" : "mesh",
+                            d == 2 ? "disk" : "sphere"));
+  }
   if (d == 2) {
     o.spin[2] = t.number("spin", 0.0, Range());
   } else {
@@ -273,8 +284,9 @@ void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Po
   for (int a = 0; a < 3; ++a) {
     lo[a] = o.extent_min[a] - margin;
     hi[a] = o.extent_max[a] + margin;
-    // A body goes anywhere, a moving solid through the box: sampled whole.
-    if (o.dynamic() || translates(o, s.dimension)) continue;
+    // A body goes anywhere, a moving solid through the box, a posed one is
+    // sampled in its own frame: sampled whole.
+    if (o.dynamic() || o.posed() || translates(o, s.dimension)) continue;
     lo[a] = std::max(lo[a], -margin);
     hi[a] = std::min(hi[a], s.size[a] + margin);
   }
@@ -320,7 +332,7 @@ double config_distance(const ObstacleConfig& o, const Vec<D>& x) {
   if constexpr (D == 3)
     if (o.shape == ObstacleShape::Mesh) {
       Vec<D> p = x;
-      if (o.dynamic()) {  // where x is on the solid as the file gives it
+      if (o.dynamic() || o.posed()) {  // where x is on the solid as the file gives it
         const Obstacle<D> body = make_obstacle<D>(o);
         p = body.b + body.rotation.transpose() * (x - body.a);
       }
@@ -445,6 +457,12 @@ ObstacleConfig read_obstacle(TableReader t, SceneConfig& s) {
     }
   }
   read_orientation(t, o, d);
+  if (o.posed() && (o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh)) {
+    // Turned about its centroid, as a body.
+    if (o.shape == ObstacleShape::Polygon) check_simple_polygon(t, o);
+    o.centroid = body_mass_properties(o).centroid;
+    o.center = o.centroid;
+  }
   if (t.has("until")) {
     if (o.dynamic())
       t.fail_at(t.node("until"), "until",
