@@ -251,23 +251,7 @@ void box_dropped_on_sand() {
   EXPECT_LT(bottom, surface);
   EXPECT_GT(bottom, surface - b.b.minCoeff());
   // The same run on 2 threads, to the bit.
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  Simulation<D> one(scene);
-  omp_set_num_threads(2);
-  Simulation<D> two(scene);
-  for (int i = 0; i < 12; ++i) {
-    const double dt = one.adaptive_dt(1.0);
-    omp_set_num_threads(1);
-    one.step(dt);
-    omp_set_num_threads(2);
-    two.step(dt);
-  }
-  omp_set_num_threads(threads);
-  EXPECT_EQ(one.obstacles()[0].a, two.obstacles()[0].a);
-  EXPECT_EQ(one.obstacles()[0].spin, two.obstacles()[0].spin);
-  EXPECT_EQ(one.obstacles()[0].quaternion, two.obstacles()[0].quaternion);
-  EXPECT_EQ(one.particles().position, two.particles().position);
+  test::expect_same_bits_on_1_and_2_threads<D>(scene, 12, 0);
 }
 
 TEST(BoxBodies, BoxDroppedOnSandRestsOnIt2D) { box_dropped_on_sand<2>(); }

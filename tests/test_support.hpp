@@ -63,7 +63,8 @@ struct Result {
 // the output goes through a log file of this process.
 inline Result shell(std::string line) {
   const std::string bin = SABLIER_BINARY;
-  for (std::size_t at = line.find("{bin}"); at != std::string::npos; at = line.find("{bin}", at + bin.size()))
+  for (std::size_t at = line.find("{bin}"); at != std::string::npos;
+       at = line.find("{bin}", at + bin.size()))
     line.replace(at, 5, bin);
   const std::filesystem::path log = temp_path("log");
   const int status = std::system(("(" + line + ") > " + log.string() + " 2>&1").c_str());
@@ -73,7 +74,9 @@ inline Result shell(std::string line) {
 }
 
 // Runs the sablier binary with these arguments.
-inline Result sablier(const std::string& args) { return shell(std::string(SABLIER_BINARY) + " " + args); }
+inline Result sablier(const std::string& args) {
+  return shell(std::string(SABLIER_BINARY) + " " + args);
+}
 
 // The path of a shipped scene, scenes/<name>.
 inline std::string scene_file(const std::string& name) {
@@ -146,6 +149,33 @@ BodyBalance run_body_balance(Simulation<D>& sim, double duration) {
   }
   out.mean_force = impulse / span;
   return out;
+}
+
+// Steps `scene` on 1 thread and on 2 through the same `steps` adaptive
+// steps and expects the same bits: the particles' positions and, if body
+// >= 0, that rigid body's state (results must not depend on the thread
+// count). Leaves the thread count as it found it.
+template <int D>
+void expect_same_bits_on_1_and_2_threads(const SceneConfig& scene, int steps, int body = -1) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  Simulation<D> one(scene);
+  omp_set_num_threads(2);
+  Simulation<D> two(scene);
+  for (int i = 0; i < steps; ++i) {
+    const double dt = one.adaptive_dt(1.0 / scene.time.fps);
+    omp_set_num_threads(1);
+    one.step(dt);
+    omp_set_num_threads(2);
+    two.step(dt);
+  }
+  omp_set_num_threads(threads);
+  if (body >= 0) {
+    EXPECT_EQ(one.obstacles()[body].a, two.obstacles()[body].a);
+    EXPECT_EQ(one.obstacles()[body].spin, two.obstacles()[body].spin);
+    EXPECT_EQ(one.obstacles()[body].quaternion, two.obstacles()[body].quaternion);
+  }
+  EXPECT_EQ(one.particles().position, two.particles().position);
 }
 
 }  // namespace sablier::test
