@@ -306,6 +306,17 @@ Rest rest_on_edges(Simulation<3>& sim, std::size_t k, double top, int support,
   return r;
 }
 
+// At rest on its edge rows: `rows` of them, its lowest point at the
+// support's top and its speed, spin and force balance within 1e-3 (of a
+// cell, m/s, rad/s, its weight).
+void expect_rests(const Rest& r, int rows) {
+  EXPECT_EQ(r.rows, rows);
+  EXPECT_LT(std::abs(r.depth), 1e-3);
+  EXPECT_LT(r.speed, 1e-3);
+  EXPECT_LT(r.spin, 1e-3);
+  EXPECT_LT(r.force_error, 1e-3);
+}
+
 // A plank (30 x 6 x 6 cm, 500 kg/m^3) dropped flat across a fixed beam 4 cm
 // wide: its corners are 13 cm off the beam and the beam's top corners 7 cm
 // off the plank, so four edge crossings hold it (before them, nothing did:
@@ -321,11 +332,7 @@ TEST(EdgeContacts, PlankRestsAcrossAFixedBeam) {
   const SceneConfig scene = parse_scene(text, "plank.toml");
   Simulation<3> sim(scene);
   const Rest r = rest_on_edges(sim, 1, top, -1, "plank across a fixed beam");
-  EXPECT_EQ(r.rows, 4);
-  EXPECT_LT(std::abs(r.depth), 1e-3);
-  EXPECT_LT(r.speed, 1e-3);
-  EXPECT_LT(r.spin, 1e-3);
-  EXPECT_LT(r.force_error, 1e-3);
+  expect_rests(r, 4);
   test::expect_same_bits_on_1_and_2_threads<3>(scene, 12, 1);
 }
 
@@ -342,11 +349,7 @@ TEST(EdgeContacts, MeshPlankRestsAcrossAFixedBeam) {
   Simulation<3> sim(parse_scene(text, "mesh_plank.toml"));
   fs::remove_all(dir);
   const Rest r = rest_on_edges(sim, 1, 0.1, -1, "mesh plank across a fixed beam");
-  EXPECT_EQ(r.rows, 4);
-  EXPECT_LT(std::abs(r.depth), 1e-3);
-  EXPECT_LT(r.speed, 1e-3);
-  EXPECT_LT(r.spin, 1e-3);
-  EXPECT_LT(r.force_error, 1e-3);
+  expect_rests(r, 4);
 }
 
 // Edge on edge alone: a square beam (6 cm) turned 45 degrees about its long
@@ -372,11 +375,7 @@ TEST(EdgeContacts, TurnedBoxRestsOnAMeshRidgeEdgeToEdge) {
   Simulation<3> sim(parse_scene(text, "ridge.toml"));
   fs::remove_all(dir);
   const Rest r = rest_on_edges(sim, 1, top, -1, "turned box on a mesh ridge");
-  EXPECT_EQ(r.rows, 1);
-  EXPECT_LT(std::abs(r.depth), 1e-3);
-  EXPECT_LT(r.speed, 1e-3);
-  EXPECT_LT(r.spin, 1e-3);
-  EXPECT_LT(r.force_error, 1e-3);
+  expect_rests(r, 1);
 }
 
 // Body on body: the plank across a beam that is itself a body (2000 kg/m^3)
@@ -399,11 +398,7 @@ TEST(EdgeContacts, PlankRestsAcrossABeamBody) {
   std::cout << "the beam body: speed " << beam.velocity.norm() << " m/s, net force of its " << rows
             << " rows " << on_beam.transpose() << " N against its weight " << weight << " N ("
             << (on_beam - V3(0, 0, weight)).norm() / weight << " off)\n";
-  EXPECT_EQ(r.rows, 4);
-  EXPECT_LT(std::abs(r.depth), 1e-3);
-  EXPECT_LT(r.speed, 1e-3);
-  EXPECT_LT(r.spin, 1e-3);
-  EXPECT_LT(r.force_error, 1e-3);
+  expect_rests(r, 4);
   EXPECT_LT(beam.velocity.norm(), 1e-3);
   EXPECT_LT((on_beam - V3(0, 0, weight)).norm(), 1e-3 * weight);
 }
