@@ -65,8 +65,10 @@ struct Obstacle {
   Mat<D> rotation = Mat<D>::Identity();
 };
 
-// Whether a fixed obstacle translates (obstacle[].velocity, other than a
-// plane's along itself, which leaves its solid in place: a conveyor belt).
+// Whether a fixed obstacle moves through the box: translates
+// (obstacle[].velocity, other than a plane's along itself, which leaves its
+// solid in place: a conveyor belt) or turns (a box, polygon or mesh with a
+// spin; a spinning disk or sphere stays in place: a roller).
 template <int D>
 inline bool moves_into_sand(const Obstacle<D>& o) {
   if (o.dynamic) return false;

@@ -16,8 +16,9 @@ namespace sablier {
 void read_all_obstacles(TableReader& root, SceneConfig& s);
 
 // Whether a fixed obstacle translates (obstacle[].velocity, other than a
-// plane's along itself, which leaves its solid in place: a conveyor belt):
-// a solid driven into the sand.
+// plane's along itself, which leaves its solid in place: a conveyor belt)
+// or turns (a box, polygon or mesh with a spin): a solid driven into the
+// sand.
 bool moves_into_sand(const ObstacleConfig& o, int dimension);
 
 // The scene file's name of a shape: Ball is "disk" in 2D, "sphere" in 3D.
