@@ -193,9 +193,10 @@ void Simulation<D>::transfer_to_grid(double dt) {
     };
     // Rows of a fixed solid's corners (a box's, a polygon's) against body b
     // (a box, polygon or mesh), where a corner pokes at the body's face (a
-    // box landing on a ledge's edge): the normal, the body's outward one
-    // there, points from the body to the corner, and the row's point on the
-    // body is the corner's nearest on its surface.
+    // box landing on a ledge's edge), and of a fixed disk's or sphere's
+    // centre, reaching its radius further (a box set on a drum): the normal,
+    // the body's outward one there, points from the body to the corner, and
+    // the row's point on the body is the corner's nearest on its surface.
     const auto corners_against_body = [&](std::size_t b, std::size_t s) {
       const Obstacle<D>& o = obstacles[b];
       const Obstacle<D>& q = obstacles[s];
@@ -217,20 +218,29 @@ void Simulation<D>::transfer_to_grid(double dt) {
           for (int a = 0; a < 2; ++a) x[a] = p[a] + q.a[a];
           corners.push_back(x);
         }
+      } else if (q.shape == ObstacleShape::Ball) {
+        corners.push_back(q.a);  // a fixed disk or sphere: its centre, a radius further
       }
-      const double reach = bounding_radius(o) + h;
+      const double further = q.shape == ObstacleShape::Ball ? q.radius : 0.0;
+      const double reach = bounding_radius(o) + h + further;
       for (std::size_t t = 0; t < corners.size(); ++t) {
         const Vec<D>& x = corners[t];
         if ((x - o.a).squaredNorm() >= reach * reach) continue;
         Vec<D> n;  // the body's outward normal
-        const double distance = signed_distance(o, x, &n);
+        const double from_point = signed_distance(o, x, &n);
+        const double distance = from_point - further;
         if (distance >= h) continue;
         const std::int64_t key = static_cast<std::int64_t>(s) * count +
                                  static_cast<std::int64_t>(b) +
                                  count * count * (NC + static_cast<std::int64_t>(t));
-        Contact c{ghost_node(key),      n,  static_cast<int>(b),   std::max(distance, 0.0),
-                  std::min(o.mu, q.mu), -1, surface_velocity(q, x)};
-        c.arm = x - distance * n - o.a;
+        Contact c{ghost_node(key),
+                  n,
+                  static_cast<int>(b),
+                  std::max(distance, 0.0),
+                  std::min(o.mu, q.mu),
+                  -1,
+                  surface_velocity(q, Vec<D>(x - further * n))};
+        c.arm = x - from_point * n - o.a;
         body_contacts.push_back(c);
       }
     };
