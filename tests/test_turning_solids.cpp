@@ -81,21 +81,34 @@ const std::string kPaddle =
     "[[sand]]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.5, 0.15]\njitter = 0.3\n"
     "[[obstacle]]\nshape = \"box\"\nmin = [0.19, 0.07]\nmax = [0.31, 0.09]\nspin = 3.0\n";
 
+// Runs `sim` to time t: the largest phi a grain sees after the first step
+// (the first is the jittered seeding's own) and the deepest any grain is
+// inside solid 0 where it is at the end of each step (0: none inside).
+struct PaddleRun {
+  double most_phi = 0.0, deepest = 0.0;
+};
+
+template <int D>
+PaddleRun run_paddle(Simulation<D>& sim, double t) {
+  PaddleRun r;
+  while (sim.time() < t - 1e-12) {
+    sim.step(sim.adaptive_dt(std::min(1.0 / 30, t - sim.time())));
+    if (sim.steps() > 1)
+      for (double p : sim.particles().phi) r.most_phi = std::max(r.most_phi, p);
+    const Obstacle<D> paddle = sim.obstacles_at(sim.time())[0];
+    for (const Vec<D>& x : sim.particles().position) {
+      Vec<D> n;
+      r.deepest = std::min(r.deepest, signed_distance(paddle, x, &n));
+    }
+  }
+  return r;
+}
+
 TEST(TurningSolids, TurningPaddleStirsTheSandAndKeepsPhi2D) {
   const SceneConfig s = parse_scene(kPaddle, "paddle.toml");
   ASSERT_EQ(s.solver.decompaction, Decompaction::Project);  // chosen for the turning paddle
   Simulation<2> sim(s);
-  double most_phi = 0.0, deepest = 0.0;
-  while (sim.time() < 1.0 - 1e-12) {
-    sim.step(sim.adaptive_dt(std::min(1.0 / 30, 1.0 - sim.time())));
-    if (sim.steps() > 1)
-      for (double p : sim.particles().phi) most_phi = std::max(most_phi, p);
-    const Obstacle<2> paddle = sim.obstacles_at(sim.time())[0];
-    for (const Vec<2>& x : sim.particles().position) {
-      Vec<2> n;
-      deepest = std::min(deepest, signed_distance(paddle, x, &n));
-    }
-  }
+  const auto [most_phi, deepest] = run_paddle(sim, 1.0);
   const Obstacle<2> paddle = sim.obstacles_at(1.0)[0];
   double fastest = 0.0;
   for (const Vec<2>& u : sim.particles().velocity) fastest = std::max(fastest, u.norm());
@@ -200,17 +213,7 @@ TEST(TurningSolids, TurningPaddleKeepsPhi3D) {
   const SceneConfig s = parse_scene(text, "paddle3d.toml");
   ASSERT_EQ(s.solver.decompaction, Decompaction::Project);
   Simulation<3> sim(s);
-  double most_phi = 0.0, deepest = 0.0;
-  while (sim.time() < 0.3 - 1e-12) {
-    sim.step(sim.adaptive_dt(std::min(1.0 / 30, 0.3 - sim.time())));
-    if (sim.steps() > 1)
-      for (double p : sim.particles().phi) most_phi = std::max(most_phi, p);
-    const Obstacle<3> paddle = sim.obstacles_at(sim.time())[0];
-    for (const Vec<3>& x : sim.particles().position) {
-      Vec<3> n;
-      deepest = std::min(deepest, signed_distance(paddle, x, &n));
-    }
-  }
+  const auto [most_phi, deepest] = run_paddle(sim, 0.3);
   std::cout << "3D turning paddle: largest phi " << most_phi << ", deepest grain " << deepest
             << " m\n";
   EXPECT_LT(most_phi, 0.61);
