@@ -5,10 +5,12 @@
 #include <omp.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
 #include "body_fixtures.hpp"
+#include "mesh_fixtures.hpp"
 #include "physics/obstacle.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
@@ -385,6 +387,31 @@ void box_rests_on_a_drum() {
 
 TEST(BoxBodies, BoxRestsOnADrum2D) { box_rests_on_a_drum<2>(); }
 TEST(BoxBodies, BoxRestsOnADrum3D) { box_rests_on_a_drum<3>(); }
+
+// A box set flat on the apex of a fixed mesh pyramid (its top 1e-4 m below
+// the box, under the middle of the box's bottom face): no corner or edge of
+// the box meets the pyramid, whose apex vertex holds it (the mesh's
+// vertices get rows against a body's faces as a fixed box's corners do).
+// Source: statics, a symmetric balance: the box rests level, its bottom at
+// the apex (without the vertices' rows it sank 5.1 cm onto the slopes).
+TEST(BoxBodies, BoxRestsOnAMeshApex3D) {
+  const auto dir = test::temp_dir("apex");
+  const auto obj = dir / "pyramid.obj";
+  TriangleMesh pyramid;
+  pyramid.vertices = {
+      {0.2, 0.05, 0.0}, {0.4, 0.05, 0.0}, {0.4, 0.25, 0.0}, {0.2, 0.25, 0.0}, {0.3, 0.15, 0.1}};
+  pyramid.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  test::write_obj(obj, {pyramid});
+  const std::string text =
+      "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[grid]\nsize = [0.6, 0.3, 0.3]\n"
+      "resolution = [30, 15, 15]\n[[obstacle]]\nshape = \"mesh\"\nfile = \"" +
+      obj.string() +
+      "\"\n[[obstacle]]\nshape = \"box\"\nmin = [0.25, 0.1, 0.1001]\nmax = [0.35, 0.2, "
+      "0.1201]\ndensity = 1000\n" +
+      kSpeck3D;
+  expect_box_rests_level<3>(text, 0.1, "a mesh pyramid's apex");
+  std::filesystem::remove_all(dir);
+}
 
 }  // namespace
 }  // namespace sablier

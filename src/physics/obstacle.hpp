@@ -177,6 +177,14 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   o.distance = c.distance;
   o.edges = c.edges;
   o.until = c.until;
+  if constexpr (D == 3)
+    if (c.shape == ObstacleShape::Mesh && c.surface && !c.dynamic() && !c.posed()) {
+      // A fixed mesh's vertices where the scene puts them (`a` translates
+      // them), which meet rigid bodies' faces (transfer.cpp).
+      auto points = std::make_shared<std::vector<Vec<D>>>();
+      for (const Point3& p : c.surface->vertices) points->push_back(Vec<D>(p[0], p[1], p[2]));
+      o.points = std::move(points);
+    }
   if (c.shape == ObstacleShape::Plane) o.b.normalize();
   o.radius = c.radius;
   o.height = c.height;

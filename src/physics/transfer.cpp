@@ -191,7 +191,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         body_contacts.push_back(c);
       }
     };
-    // Rows of a fixed solid's corners (a box's, a polygon's) against body b
+    // Rows of a fixed solid's corners (a box's, a polygon's, a mesh's vertices) against body b
     // (a box, polygon or mesh), where a corner pokes at the body's face (a
     // box landing on a ledge's edge), and of a fixed disk's or sphere's
     // centre, reaching its radius further (a box set on a drum): the normal,
@@ -202,10 +202,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
       const Obstacle<D>& q = obstacles[s];
       if (q.gone) return;
       corners.clear();
-      if (q.posed) {
-        body_points(q, corners);  // a turned box's or polygon's corners
-        if constexpr (D == 3)
-          if (q.shape == ObstacleShape::Mesh) corners.clear();  // a mesh's vertices: not seen
+      if (q.posed || q.shape == ObstacleShape::Mesh) {
+        body_points(q, corners);  // a turned box's or polygon's corners, a mesh's vertices
       } else if (q.shape == ObstacleShape::Box) {
         for (int c = 0; c < NC; ++c) {
           Vec<D> x;
