@@ -73,10 +73,6 @@ void print_obstacles(const SceneConfig& s) {
         break;
       case ObstacleShape::Box:
         where = fmt::format("from {} to {}", point(o.min, d), point(o.max, d));
-        if (o.angle_degrees != 0.0)
-          where += d == 2 ? fmt::format(" turned {:.6g} degrees", o.angle_degrees)
-                          : fmt::format(" turned {:.6g} degrees about {}", o.angle_degrees,
-                                        point(o.axis, 3));
         break;
       case ObstacleShape::Ball:
         where = fmt::format("centre {}, radius {:.6g} m", point(o.center, d), o.radius);
@@ -94,6 +90,10 @@ void print_obstacles(const SceneConfig& s) {
                             point(o.extent_max, d));
         break;
     }
+    if (o.angle_degrees != 0.0)  // a body's, or a fixed box's, polygon's or mesh's
+      where += d == 2 ? fmt::format(" turned {:.6g} degrees", o.angle_degrees)
+                      : fmt::format(" turned {:.6g} degrees about {}", o.angle_degrees,
+                                    point(o.axis, 3));
     const double mass = !o.dynamic() ? 0.0
                         : d == 2     ? make_obstacle<2>(o).mass
                                      : make_obstacle<3>(o).mass;
@@ -104,18 +104,14 @@ void print_obstacles(const SceneConfig& s) {
                           o.density, mass, d == 2 ? "kg/m" : "kg", point(o.velocity, d))
                     : "";
     std::string motion;  // a fixed solid's: translating, turning
-    const bool spins = o.spin[0] != 0.0 || o.spin[1] != 0.0 || o.spin[2] != 0.0;
-    if (!o.dynamic() && (o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh) &&
-        o.angle_degrees != 0.0)
-      motion += d == 2 ? fmt::format(", turned {:.6g} degrees", o.angle_degrees)
-                       : fmt::format(", turned {:.6g} degrees about {}", o.angle_degrees,
-                                     point(o.axis, 3));
-    if (!o.dynamic() && moves_into_sand(o, d)) motion += ", driven into the sand";
-    if (!o.dynamic() && (o.velocity[0] != 0.0 || o.velocity[1] != 0.0 || o.velocity[2] != 0.0))
-      motion += fmt::format(", moving at {} m/s", point(o.velocity, d));
-    if (!o.dynamic() && spins)
-      motion += d == 2 ? fmt::format(", turning at {:.6g} rad/s about its centre", o.spin[2])
-                       : fmt::format(", turning at {} rad/s about its centre", point(o.spin, 3));
+    const auto nonzero = [](const Vec3d& v) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; };
+    if (!o.dynamic()) {
+      if (moves_into_sand(o, d)) motion += ", driven into the sand";
+      if (nonzero(o.velocity)) motion += fmt::format(", moving at {} m/s", point(o.velocity, d));
+      if (nonzero(o.spin))
+        motion += d == 2 ? fmt::format(", turning at {:.6g} rad/s about its centre", o.spin[2])
+                         : fmt::format(", turning at {} rad/s about its centre", point(o.spin, 3));
+    }
     const std::string gone =
         std::isfinite(o.until) ? fmt::format(", taken away at {:.6g} s", o.until) : "";
     std::printf("  obstacle[%zu] %s %s, mu %g%s%s%s\n", k, obstacle_shape_name(o.shape, d),

@@ -369,11 +369,9 @@ double Simulation<D>::adaptive_dt(double remaining) const {
   // rigid bodies' surfaces (at most |V| + |omega| r), which must not skip
   // over the grains they meet.
   double v = std::max(max_speed(), open_spout_speed(scene_, time_));
-  for (const Obstacle<D>& o : obstacles_) {
-    if (o.dynamic) v = std::max(v, o.velocity.norm() + o.spin.norm() * bounding_radius(o));
-    if (moves_into_sand(o))  // a solid driven through, turning
+  for (const Obstacle<D>& o : obstacles_)
+    if (o.dynamic || moves_into_sand(o))  // a body, or a solid driven through the sand
       v = std::max(v, o.velocity.norm() + o.spin.norm() * bounding_radius(o));
-  }
   const double g = gravity_.norm();
   double dt = remaining;
   if (g > 0.0) {

@@ -124,8 +124,8 @@ struct SandConfig {
   SandShape shape = SandShape::Box;
   Vec3d min{0, 0, 0};  // box
   Vec3d max{0, 0, 0};  // box
-  Vec3d center{0, 0,
-               0};  // cylinder / disk: centre of the base (3D, axis along z) or of the disk (2D)
+  // cylinder / disk: centre of the base (3D, axis along z) or of the disk (2D)
+  Vec3d center{0, 0, 0};
   double radius = 0.0;                                // cylinder / disk
   double height = 0.0;                                // cylinder (3D only)
   int particles_per_cell = kDefaultParticlesPerCell;  // per axis
@@ -199,8 +199,9 @@ struct ObstacleConfig {
   std::shared_ptr<const std::vector<FeatureEdge>> edges{};
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
   double mu = 0.5;  // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
-  Vec3d velocity{0, 0,
-                 0};  // m/s: a kinematic obstacle translates rigidly, x(t) = x(0) + velocity t
+  // m/s: a fixed obstacle translates rigidly, x(t) = x(0) + velocity t (a
+  // plane along itself: a conveyor belt); a rigid body's initial velocity.
+  Vec3d velocity{0, 0, 0};
   // s: a fixed obstacle is taken away for the steps that start at or after
   // this time (a gate lifted, a shutter opened); infinity = never.
   double until = std::numeric_limits<double>::infinity();

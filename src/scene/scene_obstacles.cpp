@@ -17,6 +17,20 @@
 #include "scene/scene_sources.hpp"
 
 namespace sablier {
+
+bool moves_into_sand(const ObstacleConfig& o, int d) {
+  if (o.dynamic()) return false;
+  if (o.posed() && (o.spin[0] != 0.0 || o.spin[1] != 0.0 || o.spin[2] != 0.0)) return true;
+  double speed = 0.0, normal = 0.0;
+  for (int a = 0; a < d; ++a) {
+    speed += o.velocity[a] * o.velocity[a];
+    normal += o.velocity[a] * o.normal[a];
+  }
+  if (speed == 0.0) return false;
+  // A plane sliding along itself keeps its solid in place (a conveyor belt).
+  return o.shape != ObstacleShape::Plane || std::abs(normal) > 1e-12 * std::sqrt(speed);
+}
+
 namespace {
 
 using Names = std::vector<std::string>;
@@ -129,30 +143,12 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
   }
 }
 
-// Only a plane moving along itself (a conveyor belt) may move: its solid
-// stays where it is and only its surface velocity drags the sand. Solids
-// moving into the sand are not supported yet (docs/method.md, "Frictional
-// obstacles": measured, a floor rising under a bed stirred it at up to
-// 0.4 m/s and compacted it to phi 1.1, with solves at their cap).
-// Whether a fixed obstacle translates (a velocity, other than a plane's
-// along itself, which leaves its solid in place: a conveyor belt).
-bool translates(const ObstacleConfig& o, int d) {
-  if (o.dynamic()) return false;
-  if (o.posed() && length(o.spin) > 0.0) return true;  // a turning box, polygon or mesh
-  const double speed = length(o.velocity);
-  if (speed == 0.0) return false;
-  if (o.shape != ObstacleShape::Plane) return true;
-  double normal = 0.0;
-  for (int a = 0; a < d; ++a) normal += o.velocity[a] * o.normal[a];
-  return std::abs(normal) > 1e-12 * speed;
-}
-
 // A solid driven into the sand (a fixed obstacle given a velocity, other
 // than a plane sliding along itself) needs the projection: the grains'
 // moves do not keep up with it (docs/method.md, "Solids driven into the
 // sand"). Without a `solver.decompaction` key the scene takes it.
 void check_motion(TableReader& t, const ObstacleConfig& o, SceneConfig& s) {
-  if (!translates(o, s.dimension)) return;
+  if (!moves_into_sand(o, s.dimension)) return;
   if (!s.solver.decompaction_given) s.solver.decompaction = Decompaction::Project;
   if (s.solver.decompaction == Decompaction::Project) return;
   t.fail_at(t.node("velocity"), "velocity",
@@ -286,7 +282,7 @@ void sample_region(const ObstacleConfig& o, const SceneConfig& s, Point3& lo, Po
     hi[a] = o.extent_max[a] + margin;
     // A body goes anywhere, a moving solid through the box, a posed one is
     // sampled in its own frame: sampled whole.
-    if (o.dynamic() || o.posed() || translates(o, s.dimension)) continue;
+    if (o.dynamic() || o.posed() || moves_into_sand(o, s.dimension)) continue;
     lo[a] = std::max(lo[a], -margin);
     hi[a] = std::min(hi[a], s.size[a] + margin);
   }
@@ -482,8 +478,6 @@ ObstacleConfig read_obstacle(TableReader t, SceneConfig& s) {
 }
 
 }  // namespace
-
-bool moves_into_sand(const ObstacleConfig& o, int dimension) { return translates(o, dimension); }
 
 void read_all_obstacles(TableReader& root, SceneConfig& s) {
   s.obstacles.clear();
