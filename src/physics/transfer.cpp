@@ -245,10 +245,12 @@ void Simulation<D>::transfer_to_grid(double dt) {
     // Rows where an edge of body b crosses an edge of solid s, a fixed box
     // or mesh or another body (3D, edges.hpp): the normal from the body to
     // the solid across both edges, the arms to the edges' closest points.
-    // Their keys come after every point's.
+    // Their keys come after every point's: a body's points (t), and a fixed
+    // solid's corners or vertices (NC + t).
     std::int64_t edge_slot = 2 * NC;
     for (const Obstacle<D>& o : obstacles)
-      if (o.points) edge_slot = std::max(edge_slot, static_cast<std::int64_t>(o.points->size()));
+      if (o.points)
+        edge_slot = std::max(edge_slot, NC + static_cast<std::int64_t>(o.points->size()));
     EdgeScratch edge_scratch;
     std::vector<EdgeContact> crossings;
     const auto edges_against = [&](std::size_t b, std::size_t s) {
