@@ -134,6 +134,21 @@ void Simulation<D>::build_rows(double dt) {
     const double push = pushing ? kOverfullRelaxation * excess : 0.0;
     P.k[j] = (room > 0.0 ? (cohesive ? 0.0 : room) : push) * inv_trace_dt;
     P.lambda[j] = warm_lambda_[node];
+    // A node h/2 or more inside a solid: its dual cell holds no sand, and
+    // its row sees only the slivers of grains within h/2 of the surface,
+    // with weights N_j below 1/2, which the rows of the nodes outside see
+    // too. Such a row is nearly singular, and inside a solid two cells thick
+    // it joins the sand on both faces through the solid: in mixer2d's
+    // paddle such rows carried 1e5 to 1.6e7 Pa against at most 7e4 for the
+    // sand's (its weight at the floor is 2.2e3 Pa), and one stalled solve
+    // threw grains out at 3.3 m/s (docs/method.md). The row is left out
+    // (no coupling: the solver marks it inactive).
+    if (with_obstacles && row_in_solid_[j]) {
+      P.coupling[j].setZero();
+      P.k[j] = 0.0;
+      P.cohesion[j] = 0.0;
+      P.lambda[j].setZero();
+    }
   }
   // Obstacle rows: (lambda_RB ; gamma_RB) in DP(mu_RB) with gamma_RB =
   // sym(u n^T) / h, so coupling V_j n / h on the row's own node only, no

@@ -231,6 +231,8 @@ class Simulation {
   // from the body's centre and from the other body's (m).
   std::vector<Vec<D>> contact_arm_, contact_other_arm_;
   std::vector<double> row_solid_;  // per sand row: solid fraction of V_j
+  // Per sand row: the node lies h/2 or more inside a solid (build_rows).
+  std::vector<char> row_in_solid_;
 
   ConeProblem<D> problem_;
 };

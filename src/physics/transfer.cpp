@@ -105,6 +105,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
   // order on one thread (they share their body's velocity; cone_problem.hpp).
   std::vector<Contact> body_contacts;
   std::vector<double> solid(sand_rows, 0.0);
+  std::vector<char> in_solid(sand_rows, 0);
   if (!obstacles.empty()) {
     obstacle_by_colour.resize(kColours);
     for (int run = 0; run < sand_runs; ++run)
@@ -116,6 +117,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         int which = 0;
         const double dist = obstacle_distance(obstacles, x, &n, &which);
         solid[row] = solid_fraction(dist, h);
+        in_solid[row] = dist <= -0.5 * h;
         if (dist >= h) continue;
         (obstacles[which].dynamic ? body_contacts : obstacle_by_colour[run % kColours])
             .push_back({node, n, which});
@@ -380,6 +382,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
       ++r;
     }
   row_solid_ = std::move(solid);
+  row_in_solid_ = std::move(in_solid);
   row_mu_sum_.assign(rows, 0.0);
   row_cohesion_sum_.assign(rows, 0.0);
 
@@ -460,16 +463,23 @@ void Simulation<D>::transfer_to_particles(double dt) {
     Vec<D> u = Vec<D>::Zero();
     Mat<D> grad = Mat<D>::Zero();
     SymVec<D> lambda = SymVec<D>::Zero();
-    double phi = 0.0;
+    double phi = 0.0, left_out = 0.0;
     for (int a = 0; a < NC; ++a) {
       const std::int64_t node = base + corner[a];
       const Vec<D>& ui = P.velocity[node];
       u += s.w[a] * ui;
       grad.noalias() += ui * s.grad[a].transpose();
       const int row = row_of_node_[node];
-      lambda += s.w[a] * P.lambda[row];
+      if (row_in_solid_[row]) {
+        left_out += s.w[a];
+      } else {
+        lambda += s.w[a] * P.lambda[row];
+      }
       phi += s.w[a] * node_grain_volume_[node] / P.volume[row];
     }
+    // A grain next to a solid reads its stress from the rows of the sand
+    // around it, not from those left out inside the solid (build_rows).
+    if (left_out > 0.0 && left_out < 1.0) lambda /= 1.0 - left_out;
     if (!u.allFinite()) bad = std::min(bad, p);
     particles_.velocity[p] = u;
     particles_.affine[p] = grad;
