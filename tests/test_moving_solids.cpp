@@ -132,6 +132,43 @@ TEST(MovingSolids, PloughPushesWithRankinesPassiveThrust2D) {
   EXPECT_EQ(sim.particles().size(), grains);
 }
 
+// A blade whose faces lie on walls: the plough's blade resting on the floor
+// (2D), and in 3D across the whole box, on the floor and between the side
+// walls. A grain the blade runs into goes back out through the front face,
+// not through the wall that its nearest face lies on, so the box keeps
+// every grain (mass conservation: walls let none out) and none is left
+// inside the blade. Before, grains near the blade's lower face went out
+// through the floor: the 2D plough on the floor lost 38 of 8,370 grains in
+// 1 s, the 3D blade 533 of 43,740 in 0.4 s.
+template <int D>
+void blade_on_walls_keeps_every_grain(const SceneConfig& s, double t) {
+  Simulation<D> sim(s);
+  const std::size_t grains = sim.particles().size();
+  double deepest = 0.0;
+  while (sim.time() < t - 1e-12) {
+    sim.step(sim.adaptive_dt(std::min(1.0 / 30, t - sim.time())));
+    const Obstacle<D> blade = sim.obstacles_at(sim.time())[0];
+    for (const Vec<D>& x : sim.particles().position) {
+      Vec<D> n;
+      deepest = std::min(deepest, signed_distance(blade, x, &n));
+    }
+  }
+  std::cout << D << "D blade on the walls: " << sim.particles().size() << " of " << grains
+            << " grains left after " << t << " s, deepest inside the blade " << deepest << " m\n";
+  EXPECT_EQ(sim.particles().size(), grains);
+  EXPECT_GE(deepest, 0.0);
+}
+
+TEST(MovingSolids, BladeOnTheFloorKeepsEveryGrain2D) {
+  blade_on_walls_keeps_every_grain<2>(scene("plough2d.toml", {"obstacle.0.min=[0.05,0.0]"}), 1.0);
+}
+
+TEST(MovingSolids, BladeAcrossTheBoxKeepsEveryGrain3D) {
+  blade_on_walls_keeps_every_grain<3>(
+      scene("plough3d.toml", {"obstacle.0.min=[0.04,0.0,0.0]", "obstacle.0.max=[0.06,0.3,0.2]"}),
+      0.4);
+}
+
 // The projection's sums are in particle order and its Gauss-Seidel colours
 // independent (decompaction.cpp): the same bits on 1 and 2 threads (the
 // plough, 12 steps).

@@ -304,11 +304,7 @@ void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, 
     if (len == 0.0) continue;
     Vec<D> y = x + d;
     for (int a = 0; a < D; ++a) y[a] = std::clamp(y[a], 1e-6 * h, cells[a] * h - 1e-6 * h);
-    if (!obstacles_end.empty()) {
-      Vec<D> normal;
-      const double dist = obstacle_distance(obstacles_end, y, &normal);
-      if (dist < 0.0) y -= (dist - 1e-6 * h) * normal;
-    }
+    put_outside_solids(obstacles_end, y);
     move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(y - x));
     x = y;
     Vec<D>& u = particles_.velocity[p];

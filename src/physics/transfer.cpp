@@ -443,6 +443,79 @@ bool Simulation<D>::leaves_through_free_face(int axis, int side, const Vec<D>& x
   return false;
 }
 
+// A point the domain keeps: inside the box, or beyond a free face or an
+// opening (where grains leave).
+template <int D>
+bool Simulation<D>::kept_by_walls(const Vec<D>& x) const {
+  const auto& cells = grid_.cells();
+  for (int a = 0; a < D; ++a) {
+    if (x[a] < 0.0 && !leaves_through_free_face(a, 0, x)) return false;
+    if (x[a] > cells[a] * grid_.h() && !leaves_through_free_face(a, 1, x)) return false;
+  }
+  return true;
+}
+
+// A grain inside a solid goes back just outside it, along the nearest
+// surface's normal; where that is beyond a wall of the box (a solid whose
+// face lies on the wall: a blade sliding on the floor would push the grains
+// it meets out through the floor), along the shortest of the exits in the
+// directions of the box's axes and of the solid's own, that the walls keep.
+// Each exit is found by doubling a step from the distance to the surface
+// until outside every solid, then bisecting. Without any, the grain stays
+// where the normal puts it, inside the box.
+template <int D>
+void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x) const {
+  if (solids.empty()) return;
+  const double h = grid_.h();
+  const auto& cells = grid_.cells();
+  Vec<D> normal;
+  int which = 0;
+  const double depth = -obstacle_distance(solids, x, &normal, &which);
+  if (depth <= 0.0) return;
+  const Vec<D> out = x + (depth + 1e-6 * h) * normal;
+  if (kept_by_walls(out)) {
+    x = out;
+    return;
+  }
+  double reach = 0.0;  // no exit is further than the box's diagonal
+  for (int a = 0; a < D; ++a) reach += (cells[a] * h) * (cells[a] * h);
+  reach = std::sqrt(reach);
+  const auto outside = [&](double t, const Vec<D>& d) {
+    Vec<D> n;
+    return obstacle_distance(solids, Vec<D>(x + t * d), &n) >= 0.0;
+  };
+  double best = reach;
+  Vec<D> exit = out;
+  bool found = false;
+  const auto try_direction = [&](const Vec<D>& d) {
+    double in = 0.0, t = depth;
+    while (!outside(t, d)) {
+      in = t;
+      t *= 2.0;
+      if (t >= best) return;
+    }
+    for (int i = 0; i < 40 && t - in > 1e-7 * h; ++i) {
+      const double mid = 0.5 * (in + t);
+      (outside(mid, d) ? t : in) = mid;
+    }
+    const Vec<D> z = x + (t + 1e-6 * h) * d;
+    if (t < best && kept_by_walls(z) && outside(t + 1e-6 * h, d)) {
+      best = t;
+      exit = z;
+      found = true;
+    }
+  };
+  const Obstacle<D>& solid = solids[which];
+  for (int a = 0; a < D; ++a)
+    for (const double sign : {1.0, -1.0}) {
+      try_direction(sign * Vec<D>::Unit(a));
+      if (solid.posed || solid.dynamic) try_direction(sign * solid.rotation.col(a));
+    }
+  if (!found)
+    for (int a = 0; a < D; ++a) exit[a] = std::clamp(exit[a], 1e-6 * h, cells[a] * h - 1e-6 * h);
+  x = exit;
+}
+
 template <int D>
 void Simulation<D>::transfer_to_particles(double dt) {
   constexpr int NC = ipow(2, D);
@@ -512,11 +585,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // A grain the interpolated velocity carried into an obstacle (or that a
     // moving obstacle ran into) is put back on its surface: the grid
     // velocity keeps nodes out, not points between them.
-    if (!obstacles_end.empty()) {
-      Vec<D> normal;
-      const double dist = obstacle_distance(obstacles_end, x, &normal);
-      if (dist < 0.0) x -= (dist - 1e-6 * h) * normal;
-    }
+    put_outside_solids(obstacles_end, x);
   }
   if (bad != std::numeric_limits<std::int64_t>::max())
     throw std::runtime_error("non-finite velocity at step " + std::to_string(steps_) +
@@ -524,10 +593,12 @@ void Simulation<D>::transfer_to_particles(double dt) {
                              ", stage G2P (grid to particles)");
 }
 
-#define SABLIER_INSTANTIATE(D)                                                          \
-  template void Simulation<D>::sort_particles();                                        \
-  template void Simulation<D>::transfer_to_grid(double);                                \
-  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const; \
+#define SABLIER_INSTANTIATE(D)                                                                     \
+  template void Simulation<D>::sort_particles();                                                   \
+  template void Simulation<D>::transfer_to_grid(double);                                           \
+  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const;            \
+  template bool Simulation<D>::kept_by_walls(const Vec<D>&) const;                                 \
+  template void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>&, Vec<D>&) const; \
   template void Simulation<D>::transfer_to_particles(double);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
