@@ -131,9 +131,10 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       if (du < 0.0) d -= (du / u.squaredNorm()) * u;
       const Vec<D> y = x + d;
       if (!inside(y)) continue;
-      if (!obstacles_end.empty()) {
-        Vec<D> normal;
-        if (obstacle_distance(obstacles_end, y, &normal) < 0.0) continue;
+      if (!obstacles_end.empty()) {  // no move into a solid, or across a thin part of one
+        Vec<D> kept = y;
+        put_outside_solids(obstacles_end, kept, &x);
+        if (kept != y) continue;
       }
       x = y;
       // Work against gravity: a grain lifted gains m g height.
@@ -304,7 +305,7 @@ void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, 
     if (len == 0.0) continue;
     Vec<D> y = x + d;
     for (int a = 0; a < D; ++a) y[a] = std::clamp(y[a], 1e-6 * h, cells[a] * h - 1e-6 * h);
-    put_outside_solids(obstacles_end, y);
+    put_outside_solids(obstacles_end, y, &x);
     move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(y - x));
     x = y;
     Vec<D>& u = particles_.velocity[p];

@@ -167,8 +167,10 @@ class Simulation {
   bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;
   bool kept_by_walls(const Vec<D>& x) const;
   // A grain inside a solid put back just outside it, the box's walls
-  // permitting (transfer.cpp).
-  void put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x) const;
+  // permitting, on the side of `from` (where it came from) when given
+  // (transfer.cpp).
+  void put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x,
+                          const Vec<D>* from = nullptr) const;
   // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
   double mass_volume(std::size_t p) const {
     return materials_[particles_.material[p]].mass_ratio * particles_.volume[p];

@@ -462,16 +462,60 @@ bool Simulation<D>::kept_by_walls(const Vec<D>& x) const {
 // directions of the box's axes and of the solid's own, that the walls keep.
 // Each exit is found by doubling a step from the distance to the surface
 // until outside every solid, then bisecting. Without any, the grain stays
-// where the normal puts it, inside the box.
+// where the normal puts it, inside the box. Given where the grain came from
+// this step (`from`, outside the solids), a grain whose path crossed a part
+// thinner than its step (the tip of a wedge) goes back to where the path
+// entered: one that ended inside with its nearest face turned away from
+// where it came from (the normals there and at `from` opposed), or beyond
+// the part, on its far side.
 template <int D>
-void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x) const {
+void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x,
+                                       const Vec<D>* from) const {
   if (solids.empty()) return;
   const double h = grid_.h();
   const auto& cells = grid_.cells();
+  const auto inside = [&](const Vec<D>& y) {
+    Vec<D> n;
+    return obstacle_distance(solids, y, &n) < 0.0;
+  };
   Vec<D> normal;
   int which = 0;
   const double depth = -obstacle_distance(solids, x, &normal, &which);
-  if (depth <= 0.0) return;
+  // Outside, no crossing: no solid within the step's reach.
+  if (depth <= 0.0 && (from == nullptr || -depth >= (x - *from).norm())) return;
+  Vec<D> from_normal = Vec<D>::Zero();
+  const double start = from ? obstacle_distance(solids, *from, &from_normal) : -1.0;
+  // The last point outside before the first inside on the path from
+  // `from`, sampled every h / 64 (a part thinner than that may be missed)
+  // and bisected; false when the path stays outside.
+  const auto entry = [&](Vec<D>& at) {
+    const Vec<D> a = *from;
+    const double length = (x - a).norm();
+    if (start < 0.0 || start - depth >= length) return false;  // no solid within reach
+    const int samples = std::min(256, 1 + static_cast<int>(std::ceil(64.0 * length / h)));
+    for (int k = 1; k <= samples; ++k) {
+      double hi = double(k) / samples;
+      if (!inside(a + hi * (x - a))) continue;
+      double lo = double(k - 1) / samples;
+      for (int i = 0; i < 50 && (hi - lo) * length > 1e-7 * h; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (inside(a + mid * (x - a)) ? hi : lo) = mid;
+      }
+      at = a + lo * (x - a);
+      return true;
+    }
+    return false;
+  };
+  const bool turned_away = from && start >= 0.0 && from_normal.dot(normal) < 0.0;
+  Vec<D> at;
+  if (depth <= 0.0) {
+    if (turned_away && entry(at)) x = at;  // through a thin part and out
+    return;
+  }
+  if (turned_away) {
+    x = entry(at) ? at : *from;
+    return;
+  }
   const Vec<D> out = x + (depth + 1e-6 * h) * normal;
   if (kept_by_walls(out)) {
     x = out;
@@ -576,6 +620,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // Advection and the domain's faces: a particle crossing a free face (or
     // an opening) is left outside and dropped at the next sort; on walls it
     // is put back just inside (it can only overshoot when cfl > 1).
+    const Vec<D> from = x;
     x += dt * u;
     for (int a = 0; a < D; ++a) {
       const double upper = cells[a] * h;
@@ -585,7 +630,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // A grain the interpolated velocity carried into an obstacle (or that a
     // moving obstacle ran into) is put back on its surface: the grid
     // velocity keeps nodes out, not points between them.
-    put_outside_solids(obstacles_end, x);
+    put_outside_solids(obstacles_end, x, &from);
   }
   if (bad != std::numeric_limits<std::int64_t>::max())
     throw std::runtime_error("non-finite velocity at step " + std::to_string(steps_) +
@@ -593,12 +638,13 @@ void Simulation<D>::transfer_to_particles(double dt) {
                              ", stage G2P (grid to particles)");
 }
 
-#define SABLIER_INSTANTIATE(D)                                                                     \
-  template void Simulation<D>::sort_particles();                                                   \
-  template void Simulation<D>::transfer_to_grid(double);                                           \
-  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const;            \
-  template bool Simulation<D>::kept_by_walls(const Vec<D>&) const;                                 \
-  template void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>&, Vec<D>&) const; \
+#define SABLIER_INSTANTIATE(D)                                                              \
+  template void Simulation<D>::sort_particles();                                            \
+  template void Simulation<D>::transfer_to_grid(double);                                    \
+  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const;     \
+  template bool Simulation<D>::kept_by_walls(const Vec<D>&) const;                          \
+  template void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>&, Vec<D>&, \
+                                                  const Vec<D>*) const;                     \
   template void Simulation<D>::transfer_to_particles(double);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
