@@ -169,6 +169,24 @@ TEST(MovingSolids, BladeAcrossTheBoxKeepsEveryGrain3D) {
       0.4);
 }
 
+// A blade half a cell thick (5 mm at 1 cm cells) driven through the bed:
+// no grain gets behind it (it reaches above the box and below the floor,
+// so none can go around). A grain the blade runs into is put back where
+// its path relative to the blade entered the blade; put back through the
+// nearest face instead, grains past the blade's middle went out behind it:
+// 16 of 8,370 by 0.67 s, 17 by 1 s.
+TEST(MovingSolids, ThinBladeLetsNoGrainBehind2D) {
+  Simulation<2> sim(scene("plough2d.toml", {"obstacle.0.min=[0.065,-0.05]"}));
+  std::size_t behind = 0;
+  while (sim.time() < 0.7 - 1e-12) {
+    sim.step(sim.adaptive_dt(std::min(1.0 / 30, 0.7 - sim.time())));
+    const Obstacle<2> blade = sim.obstacles_at(sim.time())[0];
+    for (const Vec<2>& x : sim.particles().position) behind += x[0] < blade.a[0];  // a: min corner
+  }
+  std::cout << "thin blade: " << behind << " grain-steps behind it\n";
+  EXPECT_EQ(behind, 0u);
+}
+
 // The projection's sums are in particle order and its Gauss-Seidel colours
 // independent (decompaction.cpp): the same bits on 1 and 2 threads (the
 // plough, 12 steps).

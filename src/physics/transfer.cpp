@@ -467,7 +467,9 @@ bool Simulation<D>::kept_by_walls(const Vec<D>& x) const {
 // thinner than its step (the tip of a wedge) goes back to where the path
 // entered: one that ended inside with its nearest face turned away from
 // where it came from (the normals there and at `from` opposed), or beyond
-// the part, on its far side.
+// the part, on its far side. For a solid that moves, `from` is the grain's
+// start carried along with it (transfer_to_particles), so that the path is
+// the grain's relative to the solid.
 template <int D>
 void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x,
                                        const Vec<D>* from) const {
@@ -509,11 +511,11 @@ void Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, V
   const bool turned_away = from && start >= 0.0 && from_normal.dot(normal) < 0.0;
   Vec<D> at;
   if (depth <= 0.0) {
-    if (turned_away && entry(at)) x = at;  // through a thin part and out
+    if (turned_away && entry(at) && kept_by_walls(at)) x = at;  // through a thin part and out
     return;
   }
-  if (turned_away) {
-    x = entry(at) ? at : *from;
+  if (turned_away && entry(at) && kept_by_walls(at)) {
+    x = at;
     return;
   }
   const Vec<D> out = x + (depth + 1e-6 * h) * normal;
@@ -572,6 +574,12 @@ void Simulation<D>::transfer_to_particles(double dt) {
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
   const std::vector<Obstacle<D>> obstacles_end =
       obstacles_at(time_ + dt);  // where the step leaves them
+  // Where the step found them, for the grains near a fixed solid that
+  // moves: a grain's start carried along with that solid, so that its path
+  // is followed relative to it (put_outside_solids).
+  const std::vector<Obstacle<D>> obstacles_start = obstacles_at(time_);
+  bool driven = false;
+  for (const Obstacle<D>& o : obstacles_start) driven |= !o.dynamic && moves_into_sand(o);
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t p = 0; p < n; ++p) {
     Vec<D>& x = particles_.position[p];
@@ -630,7 +638,18 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // A grain the interpolated velocity carried into an obstacle (or that a
     // moving obstacle ran into) is put back on its surface: the grid
     // velocity keeps nodes out, not points between them.
-    put_outside_solids(obstacles_end, x, &from);
+    Vec<D> carried = from;
+    if (driven) {
+      Vec<D> n;
+      int k = 0;
+      obstacle_distance(obstacles_start, from, &n, &k);
+      const Obstacle<D>& s0 = obstacles_start[k];
+      const Obstacle<D>& s1 = obstacles_end[k];
+      if (!s0.dynamic && moves_into_sand(s0))
+        carried = s0.posed ? Vec<D>(s1.a + s1.rotation * (s0.rotation.transpose() * (from - s0.a)))
+                           : Vec<D>(from + (s1.a - s0.a));
+    }
+    put_outside_solids(obstacles_end, x, &carried);
   }
   if (bad != std::numeric_limits<std::int64_t>::max())
     throw std::runtime_error("non-finite velocity at step " + std::to_string(steps_) +
