@@ -169,8 +169,10 @@ class Simulation {
   // A grain inside a solid put back just outside it, the box's walls
   // permitting, on the side of `from` (where it came from) when given
   // (transfer.cpp).
-  void put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x,
-                          const Vec<D>* from = nullptr) const;
+  // Returns true, and the surface's outward normal in `held`, when it holds
+  // the grain on the side of a thin part it came from.
+  bool put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x,
+                          const Vec<D>* from = nullptr, Vec<D>* held = nullptr) const;
   // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
   double mass_volume(std::size_t p) const {
     return materials_[particles_.material[p]].mass_ratio * particles_.volume[p];
