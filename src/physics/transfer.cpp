@@ -443,126 +443,6 @@ bool Simulation<D>::leaves_through_free_face(int axis, int side, const Vec<D>& x
   return false;
 }
 
-// A point the domain keeps: inside the box, or beyond a free face or an
-// opening (where grains leave).
-template <int D>
-bool Simulation<D>::kept_by_walls(const Vec<D>& x) const {
-  const auto& cells = grid_.cells();
-  for (int a = 0; a < D; ++a) {
-    if (x[a] < 0.0 && !leaves_through_free_face(a, 0, x)) return false;
-    if (x[a] > cells[a] * grid_.h() && !leaves_through_free_face(a, 1, x)) return false;
-  }
-  return true;
-}
-
-// A grain inside a solid goes back just outside it, along the nearest
-// surface's normal; where that is beyond a wall of the box (a solid whose
-// face lies on the wall: a blade sliding on the floor would push the grains
-// it meets out through the floor), along the shortest of the exits in the
-// directions of the box's axes and of the solid's own, that the walls keep.
-// Each exit is found by doubling a step from the distance to the surface
-// until outside every solid, then bisecting. Without any, the grain stays
-// where the normal puts it, inside the box. Given where the grain came from
-// this step (`from`, outside the solids), a grain whose path crossed a part
-// thinner than its step (the tip of a wedge) goes back to where the path
-// entered: one that ended inside with its nearest face turned away from
-// where it came from (the normals there and at `from` opposed), or beyond
-// the part, on its far side. For a solid that moves, `from` is the grain's
-// start carried along with it (transfer_to_particles), so that the path is
-// the grain's relative to the solid.
-template <int D>
-bool Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x,
-                                       const Vec<D>* from, Vec<D>* held) const {
-  if (solids.empty()) return false;
-  const double h = grid_.h();
-  const auto& cells = grid_.cells();
-  const auto inside = [&](const Vec<D>& y) {
-    Vec<D> n;
-    return obstacle_distance(solids, y, &n) < 0.0;
-  };
-  Vec<D> normal;
-  int which = 0;
-  const double depth = -obstacle_distance(solids, x, &normal, &which);
-  // Outside, no crossing: no solid within the step's reach.
-  if (depth <= 0.0 && (from == nullptr || -depth >= (x - *from).norm())) return false;
-  Vec<D> from_normal = Vec<D>::Zero();
-  const double start = from ? obstacle_distance(solids, *from, &from_normal) : -1.0;
-  // The last point outside before the first inside on the path from
-  // `from`, sampled every h / 64 (a part thinner than that may be missed)
-  // and bisected; false when the path stays outside.
-  const auto entry = [&](Vec<D>& at) {
-    const Vec<D> a = *from;
-    const double length = (x - a).norm();
-    if (start < 0.0 || start - depth >= length) return false;  // no solid within reach
-    const int samples = std::min(256, 1 + static_cast<int>(std::ceil(64.0 * length / h)));
-    for (int k = 1; k <= samples; ++k) {
-      double hi = double(k) / samples;
-      if (!inside(a + hi * (x - a))) continue;
-      double lo = double(k - 1) / samples;
-      for (int i = 0; i < 50 && (hi - lo) * length > 1e-7 * h; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (inside(a + mid * (x - a)) ? hi : lo) = mid;
-      }
-      at = a + lo * (x - a);
-      return true;
-    }
-    return false;
-  };
-  const bool turned_away = from && start >= 0.0 && from_normal.dot(normal) < 0.0;
-  Vec<D> at;
-  // Held on the side it came from (through a thin part and out, or into
-  // it past its middle): the surface there, whose normal is from_normal.
-  if (turned_away && entry(at) && kept_by_walls(at)) {
-    x = at;
-    if (held) *held = from_normal;
-    return true;
-  }
-  if (depth <= 0.0) return false;
-  const Vec<D> out = x + (depth + 1e-6 * h) * normal;
-  if (kept_by_walls(out)) {
-    x = out;
-    return false;
-  }
-  double reach = 0.0;  // no exit is further than the box's diagonal
-  for (int a = 0; a < D; ++a) reach += (cells[a] * h) * (cells[a] * h);
-  reach = std::sqrt(reach);
-  const auto outside = [&](double t, const Vec<D>& d) {
-    Vec<D> n;
-    return obstacle_distance(solids, Vec<D>(x + t * d), &n) >= 0.0;
-  };
-  double best = reach;
-  Vec<D> exit = out;
-  bool found = false;
-  const auto try_direction = [&](const Vec<D>& d) {
-    double in = 0.0, t = depth;
-    while (!outside(t, d)) {
-      in = t;
-      t *= 2.0;
-      if (t >= best) return;
-    }
-    for (int i = 0; i < 40 && t - in > 1e-7 * h; ++i) {
-      const double mid = 0.5 * (in + t);
-      (outside(mid, d) ? t : in) = mid;
-    }
-    const Vec<D> z = x + (t + 1e-6 * h) * d;
-    if (t < best && kept_by_walls(z) && outside(t + 1e-6 * h, d)) {
-      best = t;
-      exit = z;
-      found = true;
-    }
-  };
-  const Obstacle<D>& solid = solids[which];
-  for (int a = 0; a < D; ++a)
-    for (const double sign : {1.0, -1.0}) {
-      try_direction(sign * Vec<D>::Unit(a));
-      if (solid.posed || solid.dynamic) try_direction(sign * solid.rotation.col(a));
-    }
-  if (!found)
-    for (int a = 0; a < D; ++a) exit[a] = std::clamp(exit[a], 1e-6 * h, cells[a] * h - 1e-6 * h);
-  x = exit;
-  return false;
-}
-
 template <int D>
 void Simulation<D>::transfer_to_particles(double dt) {
   constexpr int NC = ipow(2, D);
@@ -672,13 +552,10 @@ void Simulation<D>::transfer_to_particles(double dt) {
                              ", stage G2P (grid to particles)");
 }
 
-#define SABLIER_INSTANTIATE(D)                                                              \
-  template void Simulation<D>::sort_particles();                                            \
-  template void Simulation<D>::transfer_to_grid(double);                                    \
-  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const;     \
-  template bool Simulation<D>::kept_by_walls(const Vec<D>&) const;                          \
-  template bool Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>&, Vec<D>&, \
-                                                  const Vec<D>*, Vec<D>*) const;            \
+#define SABLIER_INSTANTIATE(D)                                                          \
+  template void Simulation<D>::sort_particles();                                        \
+  template void Simulation<D>::transfer_to_grid(double);                                \
+  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const; \
   template void Simulation<D>::transfer_to_particles(double);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
