@@ -79,7 +79,8 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     return to_sym<D>(L);
   }
 #endif
-  for (int s = 0; s < ConeProblem<D>::NS; ++s) L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
+  for (int s = 0; s < ConeProblem<D>::NS; ++s)
+    L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
   return to_sym<D>(L);
 }
 
@@ -90,6 +91,24 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   Vec<D>* u = p.velocity.data() + p.node[j];
   const Vec<D>* im = p.inv_mass.data() + p.node[j];
   const auto& g = p.coupling[j];
+#ifdef SABLIER_LANES3
+  if constexpr (D == 3) {
+    // T g_s = T_0 g_s[0] + T_1 g_s[1] + T_2 g_s[2] over T's columns, four
+    // lanes at a time (Eigen leaves it scalar; 5-10% of a 3D sweep,
+    // docs/benchmarks.md, fifteenth session).
+    const __m256d t0 = load3(T.col(0).data()), t1 = load3(T.col(1).data()),
+                  t2 = load3(T.col(2).data());
+    const double* gs = g.data();
+    for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 3) {
+      const std::int64_t o = p.stencil[s];
+      __m256d f = _mm256_mul_pd(t0, _mm256_broadcast_sd(gs));
+      f = _mm256_fmadd_pd(t1, _mm256_broadcast_sd(gs + 1), f);
+      f = _mm256_fmadd_pd(t2, _mm256_broadcast_sd(gs + 2), f);
+      store3(u[o].data(), _mm256_fmadd_pd(load3(im[o].data()), f, load3(u[o].data())));
+    }
+    return;
+  }
+#endif
   for (int s = 0; s < ConeProblem<D>::NS; ++s) {
     const std::int64_t o = p.stencil[s];
     u[o] += im[o].cwiseProduct(T * g.col(s));
@@ -388,7 +407,8 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::vector<Vec<D>> weight(nf), u_free(nf), u_prev(nf);
   for (std::int64_t q = 0; q < nf; ++q) {
     const std::int64_t i = free[q];
-    for (int c = 0; c < D; ++c) weight[q][c] = p.inv_mass[i][c] > 0.0 ? 1.0 / p.inv_mass[i][c] : 0.0;
+    for (int c = 0; c < D; ++c)
+      weight[q][c] = p.inv_mass[i][c] > 0.0 ? 1.0 / p.inv_mass[i][c] : 0.0;
     u_free[q] = p.velocity[i];  // before any stress acts
   }
   std::fill(p.beta.begin(), p.beta.end(), 0.0);
@@ -520,9 +540,15 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   report.hit_cap = report.residual > tolerance;
   for (int j = 0; j < n; ++j) {
     switch (p.state[j]) {
-      case DPCase::Slide: ++report.sliding; break;
-      case DPCase::Stick: ++report.sticking; break;
-      default: ++report.separated; break;
+      case DPCase::Slide:
+        ++report.sliding;
+        break;
+      case DPCase::Stick:
+        ++report.sticking;
+        break;
+      default:
+        ++report.separated;
+        break;
     }
   }
   return report;
