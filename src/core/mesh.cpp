@@ -56,6 +56,8 @@ Point3 closest_on_segment(const Point3& p, const Point3& a, const Point3& b) {
   return along(a, std::clamp(dot(sub(p, a), ab) / len2, 0.0, 1.0), ab);
 }
 
+}  // namespace
+
 // The point of triangle (a, b, c) nearest p, by the Voronoi region of the
 // triangle that p falls in (Ericson, Real-Time Collision Detection, 2005,
 // 5.1.5): a vertex region when p lies behind both edges leaving that vertex,
@@ -64,38 +66,62 @@ Point3 closest_on_segment(const Point3& p, const Point3& a, const Point3& b) {
 // signed quantities va, vb, vc are the barycentric weights of p's
 // projection onto the plane, each scaled by |ab x ac|^2; checking them in
 // this order needs only the six dot products below.
-Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
+Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c,
+                           TriangleFeature* feature) {
   const Point3 ab = sub(b, a), ac = sub(c, a);
   const Point3 ap = sub(p, a);
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  if (d1 <= 0.0 && d2 <= 0.0) {
+    *feature = TriangleFeature::VertexA;
+    return a;
+  }
   const Point3 bp = sub(p, b);
   const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
+  if (d3 >= 0.0 && d4 <= d3) {
+    *feature = TriangleFeature::VertexB;
+    return b;
+  }
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return along(a, d1 / (d1 - d3), ab);
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    *feature = TriangleFeature::EdgeAB;
+    return along(a, d1 / (d1 - d3), ab);
+  }
   const Point3 cp = sub(p, c);
   const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
+  if (d6 >= 0.0 && d5 <= d6) {
+    *feature = TriangleFeature::VertexC;
+    return c;
+  }
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return along(a, d2 / (d2 - d6), ac);
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    *feature = TriangleFeature::EdgeCA;
+    return along(a, d2 / (d2 - d6), ac);
+  }
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    *feature = TriangleFeature::EdgeBC;
     return along(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), sub(c, b));
+  }
   const double sum = va + vb + vc;  // |ab x ac|^2: zero for a degenerate triangle
   if (!(sum > 0.0)) {
     // A sliver that round-off let through to the face case: its nearest
     // point is on one of its edges, and dividing by sum would give NaN.
+    // (A degenerate triangle has no normal: its feature does not matter.)
     Point3 best = closest_on_segment(p, a, b);
     for (const Point3& q : {closest_on_segment(p, b, c), closest_on_segment(p, c, a)})
       if (distance2(p, q) < distance2(p, best)) best = q;
+    *feature = TriangleFeature::EdgeAB;
     return best;
   }
+  *feature = TriangleFeature::Face;
   const double v = vb / sum, w = vc / sum;
   return {a[0] + v * ab[0] + w * ac[0], a[1] + v * ab[1] + w * ac[1], a[2] + v * ab[2] + w * ac[2]};
 }
 
-}  // namespace
+Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
+  TriangleFeature f;
+  return closest_on_triangle(p, a, b, c, &f);
+}
 
 std::size_t open_edge_count(const TriangleMesh& mesh) {
   std::vector<std::uint64_t> edges;

@@ -54,6 +54,13 @@ struct FeatureEdge {
 // it is oriented. Edges not shared by exactly two triangles are skipped.
 std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh);
 
+// The point of triangle (a, b, c) nearest p, and the part of the triangle
+// it lies on (a vertex, the inside of an edge, or the inside of the face).
+enum class TriangleFeature : unsigned char { Face, EdgeAB, EdgeBC, EdgeCA, VertexA, VertexB, VertexC };
+Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c,
+                           TriangleFeature* feature);
+Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c);
+
 // The inside test of a closed mesh and the distance to its surface, built
 // once; queries allocate nothing and may run concurrently.
 class SolidMesh {
@@ -80,6 +87,8 @@ class SolidMesh {
   const Point3& upper() const { return hi_; }
   double volume() const { return volume_; }  // enclosed volume, m^3 (by the divergence theorem)
   std::size_t triangle_count() const { return tri_.size(); }
+  // The corners of triangle k (in the tree's order, not the file's).
+  std::array<Point3, 3> triangle(std::size_t k) const { return {tri_[k].a, tri_[k].b, tri_[k].c}; }
 
  private:
   struct Tri {

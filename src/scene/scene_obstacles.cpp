@@ -317,7 +317,7 @@ void sample_mesh_distances(SceneConfig& s) {
     if (o.shape != ObstacleShape::Mesh) continue;
     Point3 lo{}, hi{};
     sample_region(o, s, lo, hi, radius);
-    o.distance = std::make_shared<const DistanceGrid>(*o.solid, lo, hi, 0.5 * h, 4.0 * h + radius);
+    o.distance = std::make_shared<const DistanceGrid>(o.solid, lo, hi, 0.5 * h, 4.0 * h + radius);
   }
 }
 
