@@ -358,8 +358,9 @@ TEST(ShapedObstacles, ThinTurnedPlateHoldsItsSand3D) {
 // The same plate as a closed mesh (12 triangles): its distance is sampled
 // every 5 mm, more than the plate's thickness, so no sample lies inside it
 // and interpolation alone did not see it (measured before the sampled grid
-// took the exact distance in the cells where the mesh folds: 3,122 of
-// 27,216 grains through in 0.5 s in a box twice as wide). Now none gets
+// took the exact distance in the cells near two nearly opposed faces:
+// 3,122 of 27,216 grains through in 0.5 s in a box twice as wide, 46,572
+// grain-steps below the plate here). Now none gets
 // below it, and none ends a step inside it by the mesh's own winding
 // number.
 TEST(ShapedObstacles, ThinTurnedMeshPlateHoldsItsSand3D) {

@@ -80,9 +80,11 @@ bool triangle_meets_box(const std::array<Point3, 3>& v, const Point3& n, const P
 // cross neighbouring cells, one each, and the samples of both cells then
 // read the distance to the nearer face, which interpolates to the wrong
 // sign inside the part. A marked cell keeps the list of the triangles that
-// meet its box enlarged by kListReach samples, each with its outward normal (outward by the
-// winding number just off its centroid, so that either orientation of the
-// mesh gives the same). Serial, in the tree's order of the triangles.
+// meet its box enlarged by kListReach samples, each with its outward
+// normal (outward by the winding number just off its centroid, so that
+// either orientation of the mesh gives the same). Serial, in the tree's
+// order of the triangles; the triangles met by every cell are counted in
+// an array of one integer per cell, freed at the end.
 void DistanceGrid::mark_folds() {
   const std::array<int, 3> cells{n_[0] - 1, n_[1] - 1, n_[2] - 1};
   const std::int64_t total = std::int64_t(cells[0]) * cells[1] * cells[2];
@@ -204,14 +206,14 @@ std::int64_t DistanceGrid::exact_cells() const {
   return static_cast<std::int64_t>(list_begin_.size()) - 1;
 }
 
-// The distance in a marked cell (list `slot`) by its triangles: the nearest
-// is the surface's nearest if it lies within kListReach samples of p (every
-// triangle nearer than that is listed); its side by the angle-
+// The distance in a marked cell (list `slot`) by its triangles: the
+// nearest is the surface's nearest if it lies within kListReach samples of
+// p (every triangle nearer than that is listed); its side by the angle-
 // weighted pseudo-normal of the nearest point's feature (Baerentzen &
 // Aanaes 2005): a face's normal, the sum of an edge's two faces' normals,
 // or of a vertex's faces' normals weighted by their angles there. Returns
-// false when the nearest triangle is further than that, or p lies on
-// the surface, or the pseudo-normal leaves the side undecided.
+// false when the nearest triangle is further than that, or p lies on the
+// surface, or the pseudo-normal leaves the side undecided.
 bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double* distance,
                                   Point3* normal) const {
   const std::int32_t b = list_begin_[static_cast<std::size_t>(slot)],

@@ -8,8 +8,8 @@
 // the grid of the simulation resolves.
 //
 // Interpolation cannot see a part of the mesh thinner than a sample (a
-// plate, a blade, a sharp wedge's tip: both its faces between the same
-// samples, every sample outside). So the cells of the sampling grid that two
+// plate, a blade, a very sharp wedge's tip: both its faces between the
+// same samples, every sample outside). So the cells of the sampling grid that two
 // faces turned more than kFoldAngle from each other pass near are marked
 // when the grid is built, and in those cells the
 // distance is the mesh's exact one, from the triangles near the cell (their
@@ -30,12 +30,15 @@ namespace sablier {
 class DistanceGrid {
  public:
   // Two faces within a sample of a cell whose normals differ by more than
-  // this (radians) make it a cell of exact distances: 120 degrees, a thin
-  // part's faces (opposed, 180 degrees) and a wedge sharper than 60
-  // degrees, whose part thinner than a sample reaches more than about a
-  // sample from its tip. Blunter folds stay interpolated, rounded over
-  // about a sample.
-  static constexpr double kFoldAngle = 2.0943951023931957;
+  // this (radians) make it a cell of exact distances: 150 degrees, a thin
+  // part's faces (opposed, 180 degrees) and a wedge sharper than 30
+  // degrees, whose part thinner than a sample reaches more than about two
+  // samples from its tip. Blunter folds stay interpolated, rounded over
+  // about a sample: at 120 degrees `hopper3d`'s 49-degree lip was marked,
+  // and grains flowing around its now sharp tip were held there by the
+  // put-back that follows their paths (physics/solid_exit.cpp) until they
+  // clumped (phi 3.5 at 1 s; docs/method.md).
+  static constexpr double kFoldAngle = 2.6179938779914944;
   // A marked cell lists the triangles within this many samples of it: its
   // exact distances come from them up to that distance, beyond it from the
   // mesh's tree (measured on scenes/hopper3d.toml: with 1, a fifth of the

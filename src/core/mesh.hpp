@@ -56,7 +56,15 @@ std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh);
 
 // The point of triangle (a, b, c) nearest p, and the part of the triangle
 // it lies on (a vertex, the inside of an edge, or the inside of the face).
-enum class TriangleFeature : unsigned char { Face, EdgeAB, EdgeBC, EdgeCA, VertexA, VertexB, VertexC };
+enum class TriangleFeature : unsigned char {
+  Face,
+  EdgeAB,
+  EdgeBC,
+  EdgeCA,
+  VertexA,
+  VertexB,
+  VertexC
+};
 Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c,
                            TriangleFeature* feature);
 Point3 closest_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c);
