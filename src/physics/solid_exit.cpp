@@ -33,7 +33,8 @@ bool Simulation<D>::kept_by_walls(const Vec<D>& x) const {
 // thinner than its step (the tip of a wedge) goes back to where the path
 // entered: one that ended inside with its nearest face turned away from
 // where it came from (the normals there and at `from` opposed), or beyond
-// the part, on its far side. For a solid that moves, `from` is the grain's
+// the part, on its far side; from there it slides on along the surface
+// (below). For a solid that moves, `from` is the grain's
 // start carried along with it (transfer_to_particles), so that the path is
 // the grain's relative to the solid.
 template <int D>
@@ -52,7 +53,8 @@ bool Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, V
   // Outside, no crossing: no solid within the step's reach.
   if (depth <= 0.0 && (from == nullptr || -depth >= (x - *from).norm())) return false;
   Vec<D> from_normal = Vec<D>::Zero();
-  const double start = from ? obstacle_distance(solids, *from, &from_normal) : -1.0;
+  int from_which = -1;
+  const double start = from ? obstacle_distance(solids, *from, &from_normal, &from_which) : -1.0;
   // The last point outside before the first inside on the path from
   // `from`, sampled every h / 64 (a part thinner than that may be missed)
   // and bisected; false when the path stays outside.
@@ -77,10 +79,51 @@ bool Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>& solids, V
   const bool turned_away = from && start >= 0.0 && from_normal.dot(normal) < 0.0;
   Vec<D> at;
   // Held on the side it came from (through a thin part and out, or into
-  // it past its middle): the surface there, whose normal is from_normal.
+  // it past its middle): from where its path entered, the rest of its step
+  // without the part into the surface there, along the surface as far as
+  // the surface goes on flat (its distance unchanged, sampled every h / 64)
+  // and no further: a grain going round a sharp convex edge (the chord of
+  // its step cuts the edge) reaches the edge and rounds it at the next
+  // step; stopped where its path entered, it stayed there step after step
+  // and the sand clumped at the edge (docs/method.md). Its velocity loses
+  // the part into that surface (`held`, its normal).
   if (turned_away && entry(at) && kept_by_walls(at)) {
-    x = at;
-    if (held) *held = from_normal;
+    Vec<D> n_at;
+    int w_at = 0;
+    const double d_at = obstacle_distance(solids, at, &n_at, &w_at);
+    Vec<D> rest = x - at;
+    rest -= rest.dot(n_at) * n_at;
+    // Only round one solid's edge: between two solids (the path from one
+    // to the other, their tips meeting as in a closed V) the grain stays
+    // where its path entered.
+    const double length = from_which == which ? rest.norm() : 0.0;
+    double t_end = 0.0;  // the slide's end, as a fraction of rest
+    if (length > 0.0) {
+      const int samples = std::min(256, 1 + static_cast<int>(std::ceil(64.0 * length / h)));
+      for (int k = 1; k <= samples; ++k) {
+        const Vec<D> y = at + (double(k) / samples) * rest;
+        Vec<D> n;
+        const double d = obstacle_distance(solids, y, &n);
+        if (d < 0.0 || d > d_at + 1e-6 * h || !kept_by_walls(y)) break;
+        t_end = double(k) / samples;
+      }
+      // If another solid lies within h / 8 of the slide's end (two solids'
+      // tips that meet, as in a closed V, or a slit narrower than that),
+      // the grain stops h / 4 short of it: from there its next step would
+      // pass between them.
+      {
+        const Vec<D> e = at + t_end * rest;
+        double gap = 1e300;
+        for (std::size_t o = 0; o < solids.size(); ++o) {
+          if (static_cast<int>(o) == w_at) continue;
+          Vec<D> n;
+          gap = std::min(gap, signed_distance(solids[o], e, &n));
+        }
+        if (gap < 0.125 * h) t_end = std::max(0.0, t_end - 0.25 * h / length);
+      }
+    }
+    x = at + t_end * rest;
+    if (held) *held = n_at;
     return true;
   }
   if (depth <= 0.0) return false;
