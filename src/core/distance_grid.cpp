@@ -28,12 +28,6 @@ DistanceGrid::DistanceGrid(std::shared_ptr<const SolidMesh> solid, const Point3&
 
 namespace {
 
-Point3 sub3(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot3(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Point3 cross3(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
 // Whether triangle v (unit normal n) meets the cube of half side `half`
 // about `centre`: the separating axis test of Akenine-Moller (2001), with
 // the cube's three axes, the triangle's normal and the nine cross products
@@ -92,8 +86,8 @@ void DistanceGrid::mark_folds() {
   std::vector<Point3> normal(count, Point3{0.0, 0.0, 0.0});
   for (std::size_t t = 0; t < count; ++t) {
     const std::array<Point3, 3> v = mesh_->triangle(t);
-    const Point3 n = cross3(sub3(v[1], v[0]), sub3(v[2], v[0]));
-    const double len = std::sqrt(dot3(n, n));
+    const Point3 n = cross(sub(v[1], v[0]), sub(v[2], v[0]));
+    const double len = std::sqrt(dot(n, n));
     if (len > 0.0) normal[t] = {n[0] / len, n[1] / len, n[2] / len};
   }
   // f(t, k) on every cell k whose box, enlarged by `margin` on every side,
@@ -144,6 +138,7 @@ void DistanceGrid::mark_folds() {
   triangles_.clear();
   std::vector<std::int32_t> local(count, -1);
   std::vector<Point3> near;
+  std::vector<std::pair<double, std::int32_t>> order;  // a list's triangles by their distance
   for (std::size_t k = 0; k < static_cast<std::size_t>(total); ++k) {
     const std::int32_t b = begin[k], e = begin[k + 1];
     if (e - b < 2) continue;
@@ -164,7 +159,7 @@ void DistanceGrid::mark_folds() {
     bool fold = false;
     for (std::size_t x = 0; x < near.size() && !fold; ++x)
       for (std::size_t y = x + 1; y < near.size() && !fold; ++y)
-        fold = dot3(near[x], near[y]) < cos_fold;
+        fold = dot(near[x], near[y]) < cos_fold;
     if (!fold) continue;
     slot_[k] = static_cast<std::int32_t>(list_begin_.size()) - 1;
     for (std::int32_t x = b; x < e; ++x) {
@@ -172,15 +167,13 @@ void DistanceGrid::mark_folds() {
       if (local[t] < 0) {
         const std::array<Point3, 3> v = mesh_->triangle(t);
         Point3 n = normal[t];
-        const double eps = 1e-6 * h_;
-        const Point3 off{(v[0][0] + v[1][0] + v[2][0]) / 3.0 + eps * n[0],
-                         (v[0][1] + v[1][1] + v[2][1]) / 3.0 + eps * n[1],
-                         (v[0][2] + v[1][2] + v[2][2]) / 3.0 + eps * n[2]};
-        if (mesh_->contains(off)) n = {-n[0], -n[1], -n[2]};
         const Point3 mid{(v[0][0] + v[1][0] + v[2][0]) / 3.0, (v[0][1] + v[1][1] + v[2][1]) / 3.0,
                          (v[0][2] + v[1][2] + v[2][2]) / 3.0};
+        const double eps = 1e-6 * h_;
+        if (mesh_->contains({mid[0] + eps * n[0], mid[1] + eps * n[1], mid[2] + eps * n[2]}))
+          n = {-n[0], -n[1], -n[2]};
         double r2 = 0.0;
-        for (const Point3& c : v) r2 = std::max(r2, dot3(sub3(c, mid), sub3(c, mid)));
+        for (const Point3& c : v) r2 = std::max(r2, dot(sub(c, mid), sub(c, mid)));
         local[t] = static_cast<std::int32_t>(triangles_.size());
         triangles_.push_back({v, n, mid, std::sqrt(r2)});
       }
@@ -188,16 +181,15 @@ void DistanceGrid::mark_folds() {
     }
     // Nearest to the cell's centre first (ties by index), so that the
     // queries' bounds cut the rest early.
-    const auto first = list_.begin() + list_begin_.back();
-    const auto gap = [&](std::int32_t x) {
-      const Tri& t = triangles_[static_cast<std::size_t>(x)];
-      return dot3(sub3(centre, closest_on_triangle(centre, t.v[0], t.v[1], t.v[2])),
-                  sub3(centre, closest_on_triangle(centre, t.v[0], t.v[1], t.v[2])));
-    };
-    std::sort(first, list_.end(), [&](std::int32_t x, std::int32_t y) {
-      const double gx = gap(x), gy = gap(y);
-      return gx < gy || (gx == gy && x < y);
-    });
+    order.clear();
+    for (std::size_t x = static_cast<std::size_t>(list_begin_.back()); x < list_.size(); ++x) {
+      const Tri& t = triangles_[static_cast<std::size_t>(list_[x])];
+      const Point3 r = sub(centre, closest_on_triangle(centre, t.v[0], t.v[1], t.v[2]));
+      order.emplace_back(dot(r, r), list_[x]);
+    }
+    std::sort(order.begin(), order.end());
+    for (std::size_t x = 0; x < order.size(); ++x)
+      list_[static_cast<std::size_t>(list_begin_.back()) + x] = order[x].second;
     list_begin_.push_back(static_cast<std::int32_t>(list_.size()));
   }
 }
@@ -224,12 +216,12 @@ bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double* di
   TriangleFeature feature = TriangleFeature::Face;
   for (std::int32_t k = b; k < e; ++k) {
     const Tri& t = triangles_[static_cast<std::size_t>(list_[static_cast<std::size_t>(k)])];
-    const double bound = std::sqrt(dot3(sub3(p, t.centre), sub3(p, t.centre))) - t.radius;
+    const double bound = std::sqrt(dot(sub(p, t.centre), sub(p, t.centre))) - t.radius;
     if (bound > 0.0 && bound * bound >= best2) continue;  // no nearer than the best
     TriangleFeature f;
     const Point3 c = closest_on_triangle(p, t.v[0], t.v[1], t.v[2], &f);
-    const Point3 r = sub3(p, c);
-    const double d2 = dot3(r, r);
+    const Point3 r = sub(p, c);
+    const double d2 = dot(r, r);
     if (d2 < best2) best2 = d2, q = c, nearest = list_[static_cast<std::size_t>(k)], feature = f;
   }
   const double d = std::sqrt(best2);
@@ -273,14 +265,14 @@ bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double* di
       if (iu < 0 || (!vertex && !has_w)) continue;
       double weight = 1.0;  // an edge's two faces count alike
       if (vertex) {
-        const Point3 x = sub3(o.v[(iu + 1) % 3], o.v[iu]), y = sub3(o.v[(iu + 2) % 3], o.v[iu]);
-        weight = std::atan2(std::sqrt(dot3(cross3(x, y), cross3(x, y))), dot3(x, y));
+        const Point3 x = sub(o.v[(iu + 1) % 3], o.v[iu]), y = sub(o.v[(iu + 2) % 3], o.v[iu]);
+        weight = std::atan2(std::sqrt(dot(cross(x, y), cross(x, y))), dot(x, y));
       }
       for (int c = 0; c < 3; ++c) m[c] += weight * o.n[c];
     }
   }
-  const Point3 r = sub3(p, q);
-  const double side = dot3(r, m);
+  const Point3 r = sub(p, q);
+  const double side = dot(r, m);
   if (side == 0.0) return false;
   const double s = side > 0.0 ? 1.0 : -1.0;
   *distance = s * d;

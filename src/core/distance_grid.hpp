@@ -9,13 +9,13 @@
 //
 // Interpolation cannot see a part of the mesh thinner than a sample (a
 // plate, a blade, a very sharp wedge's tip: both its faces between the
-// same samples, every sample outside). So the cells of the sampling grid that two
-// faces turned more than kFoldAngle from each other pass near are marked
-// when the grid is built, and in those cells the
-// distance is the mesh's exact one, from the triangles near the cell (their
-// nearest point, and the side by its pseudo-normal), or failing that from
-// the mesh's tree (nearest point and winding number). Flat faces and gentle
-// tessellations stay interpolated.
+// same samples, every sample outside). So the cells of the sampling grid
+// that two faces turned more than kFoldAngle from each other pass near are
+// marked when the grid is built, and in those cells the distance is the
+// mesh's exact one, from the triangles near the cell (their nearest point,
+// and the side by its pseudo-normal), or failing that from the mesh's tree
+// (nearest point and winding number). Flat faces and gentle tessellations
+// stay interpolated.
 #pragma once
 
 #include <array>

@@ -24,11 +24,6 @@ constexpr int kLeafSize = 8;
 constexpr int kMaxDepth = 60;  // median splits: depth <= log2(triangles) + 1
 constexpr double kPi = 3.14159265358979323846;
 
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
 
 // Solid angle of triangle (a, b, c) at the origin, positive when the origin

@@ -16,6 +16,17 @@ namespace sablier {
 
 using Point3 = std::array<double, 3>;
 
+// Point3 arithmetic, for the mesh's geometry (mesh.cpp, distance_grid.cpp).
+inline Point3 sub(const Point3& a, const Point3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline double dot(const Point3& a, const Point3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline Point3 cross(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
 // A mesh file that cannot be used: what() says why, without the file name
 // (the caller names the file and the scene key).
 struct MeshError : std::runtime_error {
