@@ -1,6 +1,6 @@
 // Meshes shared by the mesh tests (test_sources.cpp, test_mesh_distance.cpp,
-// test_shaped_obstacles.cpp): a subdivided icosahedron and an axis-aligned
-// box.
+// test_shaped_obstacles.cpp, test_thin_parts.cpp): a subdivided icosahedron
+// and an axis-aligned box.
 #pragma once
 
 #include <array>
