@@ -19,6 +19,8 @@
 namespace sablier {
 namespace {
 
+constexpr double kPiQuarter = 0.78539816339744830962;
+
 using test::kPi;
 using test::kSpeck2D;
 using test::kSpeck3D;
@@ -387,6 +389,89 @@ void box_rests_on_a_drum() {
 
 TEST(BoxBodies, BoxRestsOnADrum2D) { box_rests_on_a_drum<2>(); }
 TEST(BoxBodies, BoxRestsOnADrum3D) { box_rests_on_a_drum<3>(); }
+
+// A 3D scene (a 0.6 x 0.3 x 0.3 m box of 2 cm cells, gravity gz along z)
+// with a fixed cylinder post (`post`: its centre, radius and height) and a
+// box body (`box`: its keys, and any tables after it).
+std::string post_scene(double gz, const std::string& post, const std::string& box) {
+  return "dimension = 3\ngravity = [0.0, 0.0, " + std::to_string(gz) +
+         "]\n[grid]\nsize = [0.6, 0.3, 0.3]\nresolution = [30, 15, 15]\n[[obstacle]]\n"
+         "shape = \"cylinder\"\n" +
+         post + "[[obstacle]]\nshape = \"box\"\n" + box + kSpeck3D;
+}
+
+// A box set flat on a fixed cylinder post (radius 3 cm, under the middle of
+// the box's 20 x 10 cm bottom face): none of the box's corners or edges is
+// over the post, so it is the points of the post's top rim that hold it
+// (their rows against the box's face). Source: statics, a symmetric
+// balance: the box rests level, its bottom at the post's top (without the
+// rim's rows it fell past the post to the floor, 10 cm lower). The solves go
+// to 1e-8: at the default 1e-5 the sixteen frictional rows, more than the
+// box needs, leave it wandering sideways at up to 7e-7 m/s.
+TEST(BoxBodies, BoxRestsOnANarrowCylinder3D) {
+  const std::string text =
+      post_scene(-9.81, "center = [0.3, 0.15, 0.0]\nradius = 0.03\nheight = 0.1\n",
+                 "min = [0.2, 0.1, 0.1001]\nmax = [0.4, 0.2, 0.15]\ndensity = 800\n[solver]\n"
+                 "tolerance = 1e-8\n");
+  expect_box_rests_level<3>(text, 0.1, "a narrow cylinder");
+}
+
+// A box sliding at 0.5 m/s (no gravity) into a fixed post taller than
+// itself, the post (radius 2 cm) facing the middle of the box's front face:
+// no corner or edge of the box meets it, and neither rim is within the
+// face, so it is the balls inside the post on its axis, at the heights of
+// the face's bottom and top, that stop the box (their rows against the
+// face). Source: kinematics of a rigid contact: the face ends against the post's side (within 1e-3
+// of a cell: the rows stop the approach in the step that closes the gap), nothing turns it (the
+// push is through its centre), and it has stopped (without the row the box passed through the
+// post).
+TEST(BoxBodies, BoxStopsAgainstAPostsSide3D) {
+  const std::string text =
+      post_scene(0.0, "center = [0.35, 0.15, 0.0]\nradius = 0.02\nheight = 0.3\n",
+                 "min = [0.1, 0.1, 0.1]\nmax = [0.2, 0.2, 0.15]\ndensity = 800\n"
+                 "velocity = [0.5, 0.0, 0.0]\n");
+  Simulation<3> sim(parse_scene(text, "post.toml"));
+  run_until(sim, 0.5);
+  const Obstacle<3>& box = sim.obstacles()[1];
+  const double front = box.a[0] + box.b[0];  // the box's half-size b along its own axes
+  const double tilt = std::acos(std::min(1.0, box.rotation(0, 0)));
+  std::cout << "box against a post: front face at " << front << " m (post side at 0.33), tilt "
+            << tilt << " rad, speed " << box.velocity.norm() << " m/s\n";
+  EXPECT_NEAR(front, 0.33, 1e-3 * sim.grid().h());
+  EXPECT_LT(tilt, 1e-6);
+  EXPECT_LT(box.velocity.norm(), 1e-6);
+}
+
+// A square beam (30 x 6 x 6 cm) turned 45 degrees about its long axis, set
+// edge-down across the top of a fixed post (radius 6 cm), its lower edge
+// 3 cm off the post's axis: the edge crosses the top disk along a chord,
+// its corners far beyond the post, and the top rim's points lie 7 and 12 mm
+// to either side of the edge, under its faces. It is the edge's own rows,
+// at the chord's ends, that hold it. Source: statics, a symmetric balance
+// (the chord's middle under the beam's centre): the edge rests on the
+// disk, the beam not turned further (without the edge's rows the edge
+// sank 1.0 cm into the post and the beam rolled 0.055 rad, until its faces
+// met the rim's points).
+TEST(BoxBodies, BeamEdgeRestsAcrossACylindersTop3D) {
+  const std::string text =
+      post_scene(-9.81, "center = [0.3, 0.15, 0.0]\nradius = 0.06\nheight = 0.1\n",
+                 "min = [0.15, 0.15, 0.11253]\nmax = [0.45, 0.21, 0.17253]\ndensity = 500\n"
+                 "angle = 45\naxis = [1, 0, 0]\n[solver]\ntolerance = 1e-8\n");
+  Simulation<3> sim(parse_scene(text, "beam.toml"));
+  run_until(sim, 0.5);
+  const Obstacle<3>& beam = sim.obstacles()[1];
+  // The lowest point: the centre less the half-sizes b along the turned axes.
+  double lowest = beam.a[2];
+  for (int k = 0; k < 3; ++k) lowest -= std::abs(beam.rotation(2, k)) * beam.b[k];
+  // The turn about the long axis (45 degrees as set).
+  const double roll = std::atan2(beam.rotation(2, 1), beam.rotation(1, 1));
+  std::cout << "beam edge-down across a post: lowest edge at " << lowest
+            << " m (post top 0.1), roll " << roll << " rad (pi/4 = " << kPiQuarter << "), speed "
+            << beam.velocity.norm() << " m/s\n";
+  EXPECT_NEAR(lowest, 0.1, 1e-3 * sim.grid().h());
+  EXPECT_NEAR(roll, kPiQuarter, 1e-4);
+  EXPECT_LT(beam.velocity.norm(), 1e-6);
+}
 
 // A box set flat on the apex of a fixed mesh pyramid (its top 1e-4 m below
 // the box, under the middle of the box's bottom face): no corner or edge of

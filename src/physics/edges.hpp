@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.hpp"
@@ -53,6 +54,11 @@ inline SegmentPair closest_points(const Vec<3>& p0, const Vec<3>& p1, const Vec<
   out.q = q0 + out.t * d2;
   return out;
 }
+
+// Where a solid's distance along a segment stays within kFlatReach cells
+// of its least (and its normal the same), the segment lies along the
+// solid's face: contacts go at both ends of that stretch (least_stretch).
+inline constexpr double kFlatReach = 1e-4;
 
 // An edge of a solid where it stands, with its normal cone: the outward
 // normals of its two faces span the arc about `bisector` (unit, across the
@@ -184,6 +190,94 @@ inline bool edge_contact(const SolidEdge& body, const SolidEdge& solid, double h
 struct EdgeScratch {
   std::vector<SolidEdge> body, solid;
 };
+
+// Where a distance f(s, &normal), convex in s on [0, 1] (a convex solid's
+// signed distance along a segment), is least: the ends [s0, s1] of the
+// stretch on which it stays within `flat` of its least and its normal stays
+// that of the stretch's middle (one point, s0 == s1, unless the segment
+// lies along a face). A golden-section search finds the least, bisections
+// the stretch's ends (to 1e-12 of the segment): first by the distance,
+// then from its middle by the distance and the normal.
+template <class F>
+inline std::pair<double, double> least_stretch(const F& f, double flat) {
+  constexpr double kGolden = 0.6180339887498949;
+  constexpr double kSmall = 1e-12;
+  Vec<3> n;
+  double a = 0.0, b = 1.0;
+  double s1 = b - kGolden * (b - a), s2 = a + kGolden * (b - a);
+  double f1 = f(s1, &n), f2 = f(s2, &n);
+  while (b - a > kSmall) {
+    if (f1 <= f2) {
+      b = s2;
+      s2 = s1;
+      f2 = f1;
+      s1 = b - kGolden * (b - a);
+      f1 = f(s1, &n);
+    } else {
+      a = s1;
+      s1 = s2;
+      f1 = f2;
+      s2 = a + kGolden * (b - a);
+      f2 = f(s2, &n);
+    }
+  }
+  const double best = 0.5 * (a + b);
+  const double least = f(best, &n);
+  // Going from `from` (where near holds) towards `end`: the farthest s
+  // before near fails (bisection; near holds on an interval about `from`).
+  const auto end_towards = [&](double from, double end, const auto& near) {
+    if (near(end)) return end;
+    double in = from, off = end;
+    while (std::abs(off - in) > kSmall) {
+      const double mid = 0.5 * (in + off);
+      (near(mid) ? in : off) = mid;
+    }
+    return in;
+  };
+  const auto low = [&](double s) { return f(s, &n) <= least + flat; };
+  // The least may sit at the stretch's end, where the normal turns (a
+  // face's edge): the normal to keep is the one at the stretch's middle.
+  const double mid = 0.5 * (end_towards(best, 0.0, low) + end_towards(best, 1.0, low));
+  Vec<3> n_mid;
+  f(mid, &n_mid);
+  const auto on_face = [&](double s) { return low(s) && n.dot(n_mid) >= 1.0 - 1e-12; };
+  return {end_towards(mid, 0.0, on_face), end_towards(mid, 1.0, on_face)};
+}
+
+// Where the edges of body o (a box's, a mesh's convex ones) come within a
+// cell of a fixed cylinder q away from their ends (a box turned edge-down
+// across a post's top disk, its corners beyond the post, which its rim's
+// points would let sink between them): the ends of the stretch of the edge
+// nearest q (least_stretch on q's distance, convex along the edge as q is
+// convex; two points where the edge lies along q's disk or side, else one),
+// each strictly inside the edge (an end is a corner, with its own rows).
+// Normal from the body to q (q's outward normal reversed), the distance as
+// separation, pair = the edge's index times 2 plus which end.
+inline void edges_against_cylinder(const Obstacle<3>& o, const Obstacle<3>& q, double h,
+                                   EdgeScratch& w, std::vector<EdgeContact>& out) {
+  out.clear();
+  if (q.gone || q.shape != ObstacleShape::Cylinder || edge_count(o) == 0) return;
+  Vec<3> centre = q.a;
+  centre[2] += 0.5 * q.height;
+  solid_edges(o, centre, std::hypot(q.radius, 0.5 * q.height) + h, w.body);
+  constexpr double kInside = 1e-6;  // of the edge's length, from either end
+  for (const SolidEdge& e : w.body) {
+    const auto distance = [&](double s, Vec<3>* n) {
+      return signed_distance(q, Vec<3>(e.from + s * (e.to - e.from)), n);
+    };
+    const auto [s0, s1] = least_stretch(distance, kFlatReach * h);
+    for (int end = 0; end < 2; ++end) {
+      const double s = end == 0 ? s0 : s1;
+      if (end == 1 && s1 == s0) break;
+      if (!(s > kInside && s < 1.0 - kInside)) continue;
+      Vec<3> n;
+      const double d = distance(s, &n);
+      if (!(d < h)) continue;
+      const Vec<3> x = e.from + s * (e.to - e.from);
+      out.push_back({x, Vec<3>(x - d * n), Vec<3>(-n), d, std::int64_t(e.index) * 2 + end});
+    }
+  }
+}
 
 // The crossings of body o's edges with solid q's within h (q a fixed box
 // or mesh or another body; no rows for other shapes), into `out`.

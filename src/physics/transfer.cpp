@@ -13,6 +13,14 @@
 
 namespace sablier {
 
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+// Points on each rim circle of a fixed cylinder that meet rigid bodies'
+// faces (transfer_to_grid): a body tilted on a post's rim sinks at most
+// r (1 - cos(pi / kRimPoints)), 1.9% of the radius, between two of them.
+constexpr int kRimPoints = 16;
+}  // namespace
+
 template <int D>
 void Simulation<D>::sort_particles() {
   const std::size_t n = particles_.size();
@@ -193,6 +201,54 @@ void Simulation<D>::transfer_to_grid(double dt) {
         body_contacts.push_back(c);
       }
     };
+    // A fixed cylinder (3D, its axis upright) meets a body's faces by
+    // points too (a box resting on a post narrower than itself, a box
+    // pushed against a post's side): kRimPoints points on each rim circle,
+    // reaching nothing further, and last two centres of the largest balls
+    // inside the cylinder, on its axis where it is nearest the body,
+    // reaching those balls' radius further (a ball is part of the cylinder,
+    // so its row only holds the body off the solid; along a face parallel
+    // to the axis they are the ends of where the side touches).
+    // point_reach gives each point's reach.
+    const auto cylinder_points = [&](const Obstacle<D>& q, const Obstacle<D>& o,
+                                     std::vector<Vec<D>>& out) {
+      if constexpr (D == 3) {
+        Vec<D> n;
+        if (signed_distance(q, o.a, &n) >= bounding_radius(o) + h) return;  // too far to touch
+        for (int rim = 0; rim < 2; ++rim)
+          for (int k = 0; k < kRimPoints; ++k) {
+            const double angle = 2.0 * kPi * k / kRimPoints;
+            Vec<D> x = q.a;
+            x[0] += q.radius * std::cos(angle);
+            x[1] += q.radius * std::sin(angle);
+            x[2] += rim * q.height;
+            out.push_back(x);
+          }
+        // The balls' centres on the axis between lo and hi: where it comes
+        // nearest the body, at both ends of the stretch along a face
+        // (edges.hpp, least_stretch; the body's distance is convex along
+        // the axis for a convex body, a local nearest for a mesh).
+        const double r = std::min(q.radius, 0.5 * q.height);
+        const double lo = q.a[2] + r, hi = q.a[2] + q.height - r;
+        const auto distance = [&](double t, Vec<D>* n) {
+          Vec<D> x = q.a;
+          x[2] = lo + t * (hi - lo);
+          return signed_distance(o, x, n);
+        };
+        const auto [t0, t1] = least_stretch(distance, kFlatReach * h);
+        for (const double t : {t0, t1}) {
+          Vec<D> centre = q.a;
+          centre[2] = lo + t * (hi - lo);
+          out.push_back(centre);
+        }
+      }
+    };
+    const auto point_reach = [](const Obstacle<D>& q, std::size_t t) {
+      if (q.shape == ObstacleShape::Ball) return q.radius;
+      if (q.shape == ObstacleShape::Cylinder && t >= 2 * kRimPoints)
+        return std::min(q.radius, 0.5 * q.height);
+      return 0.0;
+    };
     // Rows of a fixed solid's corners (a box's, a polygon's, a mesh's vertices) against body b
     // (a box, polygon or mesh), where a corner pokes at the body's face (a
     // box landing on a ledge's edge), and of a fixed disk's or sphere's
@@ -220,11 +276,13 @@ void Simulation<D>::transfer_to_grid(double dt) {
         }
       } else if (q.shape == ObstacleShape::Ball) {
         corners.push_back(q.a);  // a fixed disk or sphere: its centre, a radius further
+      } else if (q.shape == ObstacleShape::Cylinder) {
+        cylinder_points(q, o, corners);
       }
-      const double further = q.shape == ObstacleShape::Ball ? q.radius : 0.0;
-      const double reach = bounding_radius(o) + h + further;
       for (std::size_t t = 0; t < corners.size(); ++t) {
         const Vec<D>& x = corners[t];
+        const double further = point_reach(q, t);
+        const double reach = bounding_radius(o) + h + further;
         if ((x - o.a).squaredNorm() >= reach * reach) continue;
         Vec<D> n;  // the body's outward normal
         const double from_point = signed_distance(o, x, &n);
@@ -250,16 +308,23 @@ void Simulation<D>::transfer_to_grid(double dt) {
     // Their keys come after every point's: a body's points (t), and a fixed
     // solid's corners or vertices (NC + t).
     std::int64_t edge_slot = 2 * NC;
-    for (const Obstacle<D>& o : obstacles)
+    for (const Obstacle<D>& o : obstacles) {
       if (o.points)
         edge_slot = std::max(edge_slot, NC + static_cast<std::int64_t>(o.points->size()));
+      if (o.shape == ObstacleShape::Cylinder)
+        edge_slot = std::max(edge_slot, NC + std::int64_t(2 * kRimPoints + 2));
+    }
     EdgeScratch edge_scratch;
     std::vector<EdgeContact> crossings;
     const auto edges_against = [&](std::size_t b, std::size_t s) {
       if constexpr (D == 3) {
         const Obstacle<D>& o = obstacles[b];
         const Obstacle<D>& q = obstacles[s];
-        edge_contacts(o, q, h, edge_scratch, crossings);
+        if (q.shape == ObstacleShape::Cylinder) {
+          edges_against_cylinder(o, q, h, edge_scratch, crossings);
+        } else {
+          edge_contacts(o, q, h, edge_scratch, crossings);
+        }
         for (const EdgeContact& e : crossings) {
           const std::int64_t key = static_cast<std::int64_t>(b) * count +
                                    static_cast<std::int64_t>(s) +
