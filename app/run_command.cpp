@@ -210,11 +210,13 @@ class Runner {
                      "solver.tolerance (column hit_cap of stats.csv)\n",
                      progress.capped_steps());
       // Sand a solid drives where it cannot escape (a piston in a closed
-      // box) stays over-full: its force grows without bound.
+      // box) stays over-full: its force grows without bound. Next to a
+      // solid thinner than the cells, a few percent can stay too.
       if (crowded_steps_ > 0)
         std::fprintf(stderr,
                      "note: %lld steps left sand over-full after the projection, by up to %.0f%% "
-                     "of phi_max: a moving solid presses it where it cannot escape\n",
+                     "of phi_max, where it could not escape (a solid moving into it, or one "
+                     "thinner than the cells)\n",
                      crowded_steps_, 100.0 * most_crowded_);
     }
     return 0;
@@ -444,6 +446,8 @@ int start_run(const RunOptions& opt) {
     write_file_atomic((dir / "scene.toml").string(), set.scene_text);
     if (const std::string obj = format_obstacles_obj(scene); !obj.empty())
       write_file_atomic((dir / "obstacles.obj").string(), obj);
+    for (const std::string& line : thin_solid_warnings(scene))  // notes unless --quiet
+      if (!opt.quiet || line.rfind("warning", 0) == 0) std::fprintf(stderr, "%s\n", line.c_str());
     start_threads_and_signals(opt.threads);
     if (scene.dimension == 2) return Runner<2>(scene, set, Simulation<2>(scene)).run();
     return Runner<3>(scene, set, Simulation<3>(scene)).run();

@@ -24,6 +24,33 @@ bool moves_into_sand(const ObstacleConfig& o, int dimension);
 // The scene file's name of a shape: Ball is "disk" in 2D, "sphere" in 3D.
 const char* obstacle_shape_name(ObstacleShape shape, int dimension);
 
+// Fixed solids thinner than this many cells are not resolved by the grid:
+// with the grains' moves as decompaction, the sand flowing along them packs
+// beyond phi_max (docs/scenes.md, "Thin solids"). A scene with one takes
+// the projection when it names no decompaction, and `sablier check` and
+// `sablier run` say so (or warn, under another decompaction).
+inline constexpr double kThinSolidCells = 1.5;
+
+// The thinnest part of an obstacle, when thinner than `below` (m): its
+// thickness (m) and where it was measured (the middle of a face, in the
+// coordinates its vertices or mesh file are given in, once scaled and
+// translated). A box's least extent, a cylinder's height; a polygon's or
+// mesh's least depth, over its faces (a polygon's edges, up to 5,000 of a
+// mesh's triangles, evenly spread), at which the line into the solid from
+// the face's middle along its normal leaves the solid again (marched in
+// steps of 1/16 of `below`, then bisected). Planes and balls have none (a
+// ball is small rather than thin).
+struct ThinPart {
+  double thickness = 0.0;
+  Vec3d where{0, 0, 0};
+};
+bool thinnest_part(const ObstacleConfig& o, int dimension, double below, ThinPart* out);
+
+// One line for each fixed obstacle of `s` thinner than kThinSolidCells
+// cells, starting "note: " or "warning: ": which, how thin, where, and
+// what the decompaction does about it.
+std::vector<std::string> thin_solid_warnings(const SceneConfig& s);
+
 // The keys these blocks take, as known_scene_keys() names them.
 std::vector<std::string> obstacle_scene_keys();
 
