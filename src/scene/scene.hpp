@@ -198,6 +198,11 @@ struct ObstacleConfig {
   // The mesh's convex edges (core/mesh.hpp), for rigid bodies' edge contacts.
   std::shared_ptr<const std::vector<FeatureEdge>> edges{};
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
+  // Its thinnest part when thinner than kThinSolidCells cells, measured
+  // once the scene is read (scene_obstacles.hpp, thinnest_part), and where;
+  // 0 when none is (and for rigid bodies, which are not measured).
+  double thin = 0.0;
+  Vec3d thin_at{0, 0, 0};
   double mu = 0.5;  // Coulomb friction of sand on the obstacle, [0, kMaxObstacleMu]
   // m/s: a fixed obstacle translates rigidly, x(t) = x(0) + velocity t (a
   // plane along itself: a conveyor belt); a rigid body's initial velocity.

@@ -47,8 +47,9 @@ struct ThinPart {
 bool thinnest_part(const ObstacleConfig& o, int dimension, double below, ThinPart* out);
 
 // One line for each fixed obstacle of `s` thinner than kThinSolidCells
-// cells, starting "note: " or "warning: ": which, how thin, where, and
-// what the decompaction does about it.
+// cells (ObstacleConfig::thin, measured when the scene was read), starting
+// "note: " or "warning: ": which, how thin, where, and what the
+// decompaction does about it.
 std::vector<std::string> thin_solid_warnings(const SceneConfig& s);
 
 // The keys these blocks take, as known_scene_keys() names them.
