@@ -490,14 +490,17 @@ void read_all_obstacles(TableReader& root, SceneConfig& s) {
   // when the scene names no decompaction: the grid does not resolve it, and
   // the grains' moves let the sand flowing along it pack (docs/scenes.md,
   // "Thin solids").
-  if (!s.solver.decompaction_given)
-    for (const ObstacleConfig& o : s.obstacles) {
-      ThinPart thin;
-      if (!o.dynamic() && thinnest_part(o, s.dimension, kThinSolidCells * s.cell_size(), &thin)) {
-        s.solver.decompaction = Decompaction::Project;
-        break;
-      }
-    }
+  // Each solid is measured once, here.
+  bool thin_solid = false;
+  for (ObstacleConfig& o : s.obstacles) {
+    ThinPart thin;
+    if (o.dynamic() || !thinnest_part(o, s.dimension, kThinSolidCells * s.cell_size(), &thin))
+      continue;
+    o.thin = thin.thickness;
+    o.thin_at = thin.where;
+    thin_solid = true;
+  }
+  if (thin_solid && !s.solver.decompaction_given) s.solver.decompaction = Decompaction::Project;
 }
 
 namespace {
@@ -619,8 +622,8 @@ std::vector<std::string> thin_solid_warnings(const SceneConfig& s) {
   const bool projected = s.solver.decompaction == Decompaction::Project;
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     const ObstacleConfig& o = s.obstacles[k];
-    ThinPart thin;
-    if (o.dynamic() || !thinnest_part(o, s.dimension, below, &thin)) continue;
+    if (!(o.thin > 0.0)) continue;
+    const ThinPart thin{o.thin, o.thin_at};
     std::string where = "(";
     for (int a = 0; a < s.dimension; ++a)
       where += fmt::format("{}{:.4g}", a ? ", " : "", thin.where[a]);
