@@ -184,8 +184,17 @@ class Simulation {
     *base = grid_.cell_base_node(cc);
     Vec<D> local;
     for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
-    return q1_stencil<D>(local, h);
+    Q1Stencil<D> s = q1_stencil<D>(local, h);
+    if (!thin_solids_.empty()) keep_own_side(x, *base, s);
+    return s;
   }
+  // The compatible transfer next to thin solids (transfer.cpp): a grain's
+  // shape functions limited to the corners of its cell on its own side of
+  // every fixed solid thinner than the cells resolve, renormalised.
+  void keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<D>& s) const;
+  std::vector<Obstacle<D>> thin_solids_;    // fixed, still, thinner than kThinSolidCells
+  std::vector<double> thin_node_distance_;  // per node: signed distance to them, m
+  std::vector<Vec<D>> thin_node_normal_;    // and its unit gradient
 
   SceneConfig scene_;
   DenseGrid<D> grid_;

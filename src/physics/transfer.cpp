@@ -3,6 +3,7 @@
 // the lagged rheology state, advection and the domain's faces.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -469,7 +470,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
       for (std::int64_t p = cell_start_[c]; p < cell_start_[c + 1]; ++p) {
         const Vec<D>& x = particles_.position[p];
         const Vec<D> local = (x - origin) / h;
-        const Q1Stencil<D> s = q1_stencil<D>(local, h);
+        Q1Stencil<D> s = q1_stencil<D>(local, h);
+        if (!thin_solids_.empty()) keep_own_side(x, base, s);
         const Material& mp = mats[particles_.material[p]];
         const double vp = particles_.volume[p];
         const double mass_p = mp.mass_ratio * vp;  // rho_p V_p / rho_0
@@ -490,6 +492,64 @@ void Simulation<D>::transfer_to_grid(double dt) {
           row_cohesion_sum_[row] += m * particles_.cohesion[p];
         }
       }
+    }
+  }
+}
+
+// The compatible transfer (Hu et al. 2018, CPIC): next to a fixed solid
+// thinner than the cells resolve, a grain's shape functions keep only the
+// corners of its cell on its own side of the solid, renormalised to a
+// partition of unity (N_a / S, and gradients (grad N_a - N_a grad S / S) / S
+// over the kept corners, whose sum stays zero), so that its mass, momentum,
+// stress couplings and velocity stay on its side: with the nodes beyond
+// such a wall in the grain's stencil, the sand on one face felt the other,
+// and its grains were carried into the wall and packed on it
+// (docs/scenes.md, "Thin solids"). A corner is across when it lies inside
+// the solid, or when the nearest faces of the grain and of the corner face
+// opposite ways (normals' dot product negative) and the solid-free balls
+// about the two (their distances) do not cover the segment between them.
+template <int D>
+void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<D>& s) const {
+  constexpr int NC = ipow(2, D);
+  const double h = grid_.h();
+  const auto corner = grid_.corner_offsets();
+  bool near = false;  // a corner within reach of a thin solid
+  for (int a = 0; a < NC; ++a) near = near || thin_node_distance_[base + corner[a]] < 2.0 * h;
+  if (!near) return;
+  Vec<D> n;
+  const double d = obstacle_distance(thin_solids_, x, &n);
+  if (!(d >= 0.0)) return;  // inside: put back after the step
+  double S = 0.0;
+  Vec<D> gS = Vec<D>::Zero();
+  std::array<bool, NC> across{};
+  for (int a = 0; a < NC; ++a) {
+    const std::int64_t node = base + corner[a];
+    const double dn = thin_node_distance_[node];
+    const auto nc = grid_.node_coords(node);
+    Vec<D> xa;
+    for (int k = 0; k < D; ++k) xa[k] = nc[k] * h;
+    across[a] = dn < 0.0 || (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + dn);
+    if (!across[a]) {
+      S += s.w[a];
+      gS += s.grad[a];
+    }
+  }
+  bool any = false;
+  for (int a = 0; a < NC; ++a) any = any || across[a];
+  // Kept corners carrying less than half the weight leave the stencil
+  // whole: renormalised, their few nodes' velocities and gradients are
+  // magnified by 1 / S (measured on a funnel of a 3 mm shell at 1 cm
+  // cells: with 0.05 some grains reached 21.7 m/s, with 0.25 2.7 m/s, with
+  // 0.5 at most 1.9 m/s, the free fall's).
+  constexpr double kLeastOwnWeight = 0.5;
+  if (!any || !(S >= kLeastOwnWeight)) return;
+  for (int a = 0; a < NC; ++a) {
+    if (across[a]) {
+      s.w[a] = 0.0;
+      s.grad[a].setZero();
+    } else {
+      s.w[a] /= S;
+      s.grad[a] = (s.grad[a] - s.w[a] * gS) / S;
     }
   }
 }
@@ -621,7 +681,8 @@ void Simulation<D>::transfer_to_particles(double dt) {
   template void Simulation<D>::sort_particles();                                        \
   template void Simulation<D>::transfer_to_grid(double);                                \
   template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const; \
-  template void Simulation<D>::transfer_to_particles(double);
+  template void Simulation<D>::transfer_to_particles(double);                           \
+  template void Simulation<D>::keep_own_side(const Vec<D>&, std::int64_t, Q1Stencil<D>&) const;
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
 #undef SABLIER_INSTANTIATE
