@@ -3,7 +3,6 @@
 // the lagged rheology state, advection and the domain's faces.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
