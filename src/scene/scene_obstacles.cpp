@@ -486,11 +486,11 @@ void read_all_obstacles(TableReader& root, SceneConfig& s) {
       s.obstacles.push_back(read_obstacle(std::move(t), s));
     });
   sample_mesh_distances(s);
-  // A fixed solid thinner than kThinSolidCells cells takes the projection
-  // when the scene names no decompaction: the grid does not resolve it, and
-  // the grains' moves let the sand flowing along it pack (docs/scenes.md,
-  // "Thin solids").
-  // Each solid is measured once, here.
+  // Fixed solids thinner than kThinSolidCells cells, each measured once,
+  // here: the grid does not resolve them, so the grains next to them keep
+  // to the nodes on their side (the compatible transfer, physics/
+  // transfer.cpp), and a scene that names no decompaction takes the
+  // projection (docs/scenes.md, "Thin solids").
   bool thin_solid = false;
   for (ObstacleConfig& o : s.obstacles) {
     ThinPart thin;
@@ -639,9 +639,9 @@ std::vector<std::string> thin_solid_warnings(const SceneConfig& s) {
                   ": the sand next to it is kept at phi_max by solver.decompaction = "
                   "\"project\" (the default with such a solid; docs/scenes.md, \"Thin solids\")"
             : "warning: " + what +
-                  ": sand flowing along it packs beyond phi_max with this "
-                  "solver.decompaction; \"project\" keeps it at phi_max (docs/scenes.md, \"Thin "
-                  "solids\")");
+                  ": under this solver.decompaction the sand flowing along it may pack beyond "
+                  "phi_max; \"project\", the default with such a solid, keeps it there "
+                  "(docs/scenes.md, \"Thin solids\")");
   }
   return lines;
 }
