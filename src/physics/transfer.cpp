@@ -240,6 +240,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
           Vec<D> centre = q.a;
           centre[2] = lo + t * (hi - lo);
           out.push_back(centre);
+          if (t1 == t0) break;  // one point: no second row on it
         }
       }
     };
@@ -521,6 +522,7 @@ void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<
   double S = 0.0;
   Vec<D> gS = Vec<D>::Zero();
   std::array<bool, NC> across{};
+  bool any = false;
   for (int a = 0; a < NC; ++a) {
     const std::int64_t node = base + corner[a];
     const double dn = thin_node_distance_[node];
@@ -528,13 +530,12 @@ void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<
     Vec<D> xa;
     for (int k = 0; k < D; ++k) xa[k] = nc[k] * h;
     across[a] = dn < 0.0 || (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + dn);
+    any = any || across[a];
     if (!across[a]) {
       S += s.w[a];
       gS += s.grad[a];
     }
   }
-  bool any = false;
-  for (int a = 0; a < NC; ++a) any = any || across[a];
   // Kept corners carrying less than half the weight leave the stencil
   // whole: renormalised, their few nodes' velocities and gradients are
   // magnified by 1 / S (measured on a funnel of a 3 mm shell at 1 cm
