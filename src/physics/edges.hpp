@@ -4,6 +4,9 @@
 // (a box lying across a ridge, a plank across a beam). Where an edge of
 // such a body crosses an edge of a fixed box or mesh or of another such
 // body, the two edges' closest points get a contact row like a corner's.
+// A fixed cylinder has no edges: its rims' points and axis balls meet a
+// body's faces (cylinder_points), and a body's edges meet it where they
+// come nearest it (edges_against_cylinder).
 #pragma once
 
 #include <algorithm>
@@ -276,6 +279,52 @@ inline void edges_against_cylinder(const Obstacle<3>& o, const Obstacle<3>& q, d
       const Vec<3> x = e.from + s * (e.to - e.from);
       out.push_back({x, Vec<3>(x - d * n), Vec<3>(-n), d, std::int64_t(e.index) * 2 + end});
     }
+  }
+}
+
+// Points on each rim circle of a fixed cylinder that meet rigid bodies'
+// faces: a body tilted on a post's rim sinks at most r (1 - cos(pi /
+// kRimPoints)), 1.9% of the radius, between two of them.
+inline constexpr int kRimPoints = 16;
+
+// The points by which a fixed cylinder q (its axis upright) meets the faces
+// of body o (a box resting on a post narrower than itself, a box pushed
+// against a post's side), appended to `out`: kRimPoints points on each rim
+// circle, reaching nothing further, and last the centres of the largest
+// balls inside the cylinder on its axis where it comes nearest the body
+// (both ends of the stretch along a face parallel to the axis, else one),
+// reaching those balls' radius, min(radius, height / 2), further: a ball is
+// part of the cylinder, so its row only holds the body off the solid. None
+// when the body's centre is farther than its bounding radius and a cell.
+inline void cylinder_points(const Obstacle<3>& q, const Obstacle<3>& o, double h,
+                            std::vector<Vec<3>>& out) {
+  constexpr double kPi = 3.14159265358979323846;
+  Vec<3> n;
+  if (signed_distance(q, o.a, &n) >= bounding_radius(o) + h) return;  // too far to touch
+  for (int rim = 0; rim < 2; ++rim)
+    for (int k = 0; k < kRimPoints; ++k) {
+      const double angle = 2.0 * kPi * k / kRimPoints;
+      Vec<3> x = q.a;
+      x[0] += q.radius * std::cos(angle);
+      x[1] += q.radius * std::sin(angle);
+      x[2] += rim * q.height;
+      out.push_back(x);
+    }
+  // The body's distance is convex along the axis for a convex body (a
+  // local nearest for a mesh).
+  const double r = std::min(q.radius, 0.5 * q.height);
+  const double lo = q.a[2] + r, hi = q.a[2] + q.height - r;
+  const auto distance = [&](double t, Vec<3>* normal) {
+    Vec<3> x = q.a;
+    x[2] = lo + t * (hi - lo);
+    return signed_distance(o, x, normal);
+  };
+  const auto [t0, t1] = least_stretch(distance, kFlatReach * h);
+  for (const double t : {t0, t1}) {
+    Vec<3> centre = q.a;
+    centre[2] = lo + t * (hi - lo);
+    out.push_back(centre);
+    if (t1 == t0) break;  // one point: no second row on it
   }
 }
 

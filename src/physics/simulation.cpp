@@ -51,26 +51,7 @@ Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
   node_momentum_.assign(nodes, Vec<D>::Zero());
   row_of_node_.assign(nodes, -1);
   obstacles_ = make_obstacles<D>(scene);
-  // Fixed solids thinner than the cells resolve, standing still: the
-  // grains next to them keep to the nodes on their own side (the
-  // compatible transfer, keep_own_side), which needs each node's distance
-  // to them and its normal, computed once.
-  for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
-    const ObstacleConfig& c = scene.obstacles[k];
-    if (c.thin > 0.0 && !c.dynamic() && !moves_into_sand(obstacles_[k]) && !std::isfinite(c.until))
-      thin_solids_.push_back(obstacles_[k]);
-  }
-  if (!thin_solids_.empty()) {
-    thin_node_distance_.assign(nodes, 0.0);
-    thin_node_normal_.assign(nodes, Vec<D>::Zero());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < nodes; ++i) {
-      const auto nc = grid_.node_coords(i);
-      Vec<D> x;
-      for (int a = 0; a < D; ++a) x[a] = nc[a] * grid_.h();
-      thin_node_distance_[i] = obstacle_distance(thin_solids_, x, &thin_node_normal_[i]);
-    }
-  }
+  find_thin_solids();
   warm_lambda_.assign(obstacles_.empty() ? nodes : 2 * nodes, SymVec<D>::Zero());
   problem_.velocity.assign(nodes, Vec<D>::Zero());
   problem_.inv_mass.assign(nodes, Vec<D>::Zero());

@@ -188,7 +188,10 @@ class Simulation {
     if (!thin_solids_.empty()) keep_own_side(x, *base, s);
     return s;
   }
-  // The compatible transfer next to thin solids (transfer.cpp): a grain's
+  // The fixed, still solids thinner than kThinSolidCells cells (the
+  // scene's measure), and each node's distance to them (thin_solids.cpp).
+  void find_thin_solids();
+  // The compatible transfer next to them (thin_solids.cpp): a grain's
   // shape functions limited to the corners of its cell on its own side of
   // every fixed solid thinner than the cells resolve, renormalised.
   void keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<D>& s) const;

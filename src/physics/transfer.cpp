@@ -13,14 +13,6 @@
 
 namespace sablier {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-// Points on each rim circle of a fixed cylinder that meet rigid bodies'
-// faces (transfer_to_grid): a body tilted on a post's rim sinks at most
-// r (1 - cos(pi / kRimPoints)), 1.9% of the radius, between two of them.
-constexpr int kRimPoints = 16;
-}  // namespace
-
 template <int D>
 void Simulation<D>::sort_particles() {
   const std::size_t n = particles_.size();
@@ -201,49 +193,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
         body_contacts.push_back(c);
       }
     };
-    // A fixed cylinder (3D, its axis upright) meets a body's faces by
-    // points too (a box resting on a post narrower than itself, a box
-    // pushed against a post's side): kRimPoints points on each rim circle,
-    // reaching nothing further, and last two centres of the largest balls
-    // inside the cylinder, on its axis where it is nearest the body,
-    // reaching those balls' radius further (a ball is part of the cylinder,
-    // so its row only holds the body off the solid; along a face parallel
-    // to the axis they are the ends of where the side touches).
-    // point_reach gives each point's reach.
-    const auto cylinder_points = [&](const Obstacle<D>& q, const Obstacle<D>& o,
-                                     std::vector<Vec<D>>& out) {
-      if constexpr (D == 3) {
-        Vec<D> n;
-        if (signed_distance(q, o.a, &n) >= bounding_radius(o) + h) return;  // too far to touch
-        for (int rim = 0; rim < 2; ++rim)
-          for (int k = 0; k < kRimPoints; ++k) {
-            const double angle = 2.0 * kPi * k / kRimPoints;
-            Vec<D> x = q.a;
-            x[0] += q.radius * std::cos(angle);
-            x[1] += q.radius * std::sin(angle);
-            x[2] += rim * q.height;
-            out.push_back(x);
-          }
-        // The balls' centres on the axis between lo and hi: where it comes
-        // nearest the body, at both ends of the stretch along a face
-        // (edges.hpp, least_stretch; the body's distance is convex along
-        // the axis for a convex body, a local nearest for a mesh).
-        const double r = std::min(q.radius, 0.5 * q.height);
-        const double lo = q.a[2] + r, hi = q.a[2] + q.height - r;
-        const auto distance = [&](double t, Vec<D>* n) {
-          Vec<D> x = q.a;
-          x[2] = lo + t * (hi - lo);
-          return signed_distance(o, x, n);
-        };
-        const auto [t0, t1] = least_stretch(distance, kFlatReach * h);
-        for (const double t : {t0, t1}) {
-          Vec<D> centre = q.a;
-          centre[2] = lo + t * (hi - lo);
-          out.push_back(centre);
-          if (t1 == t0) break;  // one point: no second row on it
-        }
-      }
-    };
+    // How much further than point t of solid q its row reaches: a ball's
+    // radius, a cylinder's axis balls' (edges.hpp, cylinder_points).
     const auto point_reach = [](const Obstacle<D>& q, std::size_t t) {
       if (q.shape == ObstacleShape::Ball) return q.radius;
       if (q.shape == ObstacleShape::Cylinder && t >= 2 * kRimPoints)
@@ -278,7 +229,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
       } else if (q.shape == ObstacleShape::Ball) {
         corners.push_back(q.a);  // a fixed disk or sphere: its centre, a radius further
       } else if (q.shape == ObstacleShape::Cylinder) {
-        cylinder_points(q, o, corners);
+        if constexpr (D == 3) cylinder_points(q, o, h, corners);  // edges.hpp
       }
       for (std::size_t t = 0; t < corners.size(); ++t) {
         const Vec<D>& x = corners[t];
@@ -496,64 +447,6 @@ void Simulation<D>::transfer_to_grid(double dt) {
   }
 }
 
-// The compatible transfer (Hu et al. 2018, CPIC): next to a fixed solid
-// thinner than the cells resolve, a grain's shape functions keep only the
-// corners of its cell on its own side of the solid, renormalised to a
-// partition of unity (N_a / S, and gradients (grad N_a - N_a grad S / S) / S
-// over the kept corners, whose sum stays zero), so that its mass, momentum,
-// stress couplings and velocity stay on its side: with the nodes beyond
-// such a wall in the grain's stencil, the sand on one face felt the other,
-// and its grains were carried into the wall and packed on it
-// (docs/scenes.md, "Thin solids"). A corner is across when it lies inside
-// the solid, or when the nearest faces of the grain and of the corner face
-// opposite ways (normals' dot product negative) and the solid-free balls
-// about the two (their distances) do not cover the segment between them.
-template <int D>
-void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<D>& s) const {
-  constexpr int NC = ipow(2, D);
-  const double h = grid_.h();
-  const auto corner = grid_.corner_offsets();
-  bool near = false;  // a corner within reach of a thin solid
-  for (int a = 0; a < NC; ++a) near = near || thin_node_distance_[base + corner[a]] < 2.0 * h;
-  if (!near) return;
-  Vec<D> n;
-  const double d = obstacle_distance(thin_solids_, x, &n);
-  if (!(d >= 0.0)) return;  // inside: put back after the step
-  double S = 0.0;
-  Vec<D> gS = Vec<D>::Zero();
-  std::array<bool, NC> across{};
-  bool any = false;
-  for (int a = 0; a < NC; ++a) {
-    const std::int64_t node = base + corner[a];
-    const double dn = thin_node_distance_[node];
-    const auto nc = grid_.node_coords(node);
-    Vec<D> xa;
-    for (int k = 0; k < D; ++k) xa[k] = nc[k] * h;
-    across[a] = dn < 0.0 || (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + dn);
-    any = any || across[a];
-    if (!across[a]) {
-      S += s.w[a];
-      gS += s.grad[a];
-    }
-  }
-  // Kept corners carrying less than half the weight leave the stencil
-  // whole: renormalised, their few nodes' velocities and gradients are
-  // magnified by 1 / S (measured on a funnel of a 3 mm shell at 1 cm
-  // cells: with 0.05 some grains reached 21.7 m/s, with 0.25 2.7 m/s, with
-  // 0.5 at most 1.9 m/s, the free fall's).
-  constexpr double kLeastOwnWeight = 0.5;
-  if (!any || !(S >= kLeastOwnWeight)) return;
-  for (int a = 0; a < NC; ++a) {
-    if (across[a]) {
-      s.w[a] = 0.0;
-      s.grad[a].setZero();
-    } else {
-      s.w[a] /= S;
-      s.grad[a] = (s.grad[a] - s.w[a] * gS) / S;
-    }
-  }
-}
-
 template <int D>
 bool Simulation<D>::leaves_through_free_face(int axis, int side, const Vec<D>& x) const {
   const int face = 2 * axis + side;
@@ -681,8 +574,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
   template void Simulation<D>::sort_particles();                                        \
   template void Simulation<D>::transfer_to_grid(double);                                \
   template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const; \
-  template void Simulation<D>::transfer_to_particles(double);                           \
-  template void Simulation<D>::keep_own_side(const Vec<D>&, std::int64_t, Q1Stencil<D>&) const;
+  template void Simulation<D>::transfer_to_particles(double);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
 #undef SABLIER_INSTANTIATE

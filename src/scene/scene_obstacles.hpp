@@ -46,6 +46,12 @@ struct ThinPart {
 };
 bool thinnest_part(const ObstacleConfig& o, int dimension, double below, ThinPart* out);
 
+// Measures every fixed obstacle of `s` (ObstacleConfig::thin and
+// thin_at), once its mesh distances are sampled; a scene with one thinner
+// than kThinSolidCells cells that names no decompaction takes the
+// projection (scene/thin_solids.cpp).
+void measure_thin_solids(SceneConfig& s);
+
 // One line for each fixed obstacle of `s` thinner than kThinSolidCells
 // cells (ObstacleConfig::thin, measured when the scene was read), starting
 // "note: " or "warning: ": which, how thin, where, and what the

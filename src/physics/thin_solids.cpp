@@ -1,0 +1,99 @@
+// The compatible transfer next to fixed solids thinner than the grid
+// resolves (docs/scenes.md, "Thin solids"; docs/method.md).
+#include <cmath>
+
+#include "physics/simulation.hpp"
+
+namespace sablier {
+
+template <int D>
+void Simulation<D>::find_thin_solids() {
+  const std::int64_t nodes = grid_.node_count();
+  // Fixed solids thinner than the cells resolve, standing still: the
+  // grains next to them keep to the nodes on their own side (the
+  // compatible transfer, keep_own_side), which needs each node's distance
+  // to them and its normal, computed once.
+  for (std::size_t k = 0; k < scene_.obstacles.size(); ++k) {
+    const ObstacleConfig& c = scene_.obstacles[k];
+    if (c.thin > 0.0 && !c.dynamic() && !moves_into_sand(obstacles_[k]) && !std::isfinite(c.until))
+      thin_solids_.push_back(obstacles_[k]);
+  }
+  if (!thin_solids_.empty()) {
+    thin_node_distance_.assign(nodes, 0.0);
+    thin_node_normal_.assign(nodes, Vec<D>::Zero());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < nodes; ++i) {
+      const auto nc = grid_.node_coords(i);
+      Vec<D> x;
+      for (int a = 0; a < D; ++a) x[a] = nc[a] * grid_.h();
+      thin_node_distance_[i] = obstacle_distance(thin_solids_, x, &thin_node_normal_[i]);
+    }
+  }
+}
+
+// The compatible transfer (Hu et al. 2018, CPIC): next to a fixed solid
+// thinner than the cells resolve, a grain's shape functions keep only the
+// corners of its cell on its own side of the solid, renormalised to a
+// partition of unity (N_a / S, and gradients (grad N_a - N_a grad S / S) / S
+// over the kept corners, whose sum stays zero), so that its mass, momentum,
+// stress couplings and velocity stay on its side: with the nodes beyond
+// such a wall in the grain's stencil, the sand on one face felt the other,
+// and its grains were carried into the wall and packed on it
+// (docs/scenes.md, "Thin solids"). A corner is across when it lies inside
+// the solid, or when the nearest faces of the grain and of the corner face
+// opposite ways (normals' dot product negative) and the solid-free balls
+// about the two (their distances) do not cover the segment between them.
+template <int D>
+void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<D>& s) const {
+  constexpr int NC = ipow(2, D);
+  const double h = grid_.h();
+  const auto corner = grid_.corner_offsets();
+  bool near = false;  // a corner within reach of a thin solid
+  for (int a = 0; a < NC; ++a) near = near || thin_node_distance_[base + corner[a]] < 2.0 * h;
+  if (!near) return;
+  Vec<D> n;
+  const double d = obstacle_distance(thin_solids_, x, &n);
+  if (!(d >= 0.0)) return;  // inside: put back after the step
+  double S = 0.0;
+  Vec<D> gS = Vec<D>::Zero();
+  std::array<bool, NC> across{};
+  bool any = false;
+  for (int a = 0; a < NC; ++a) {
+    const std::int64_t node = base + corner[a];
+    const double dn = thin_node_distance_[node];
+    const auto nc = grid_.node_coords(node);
+    Vec<D> xa;
+    for (int k = 0; k < D; ++k) xa[k] = nc[k] * h;
+    across[a] = dn < 0.0 || (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + dn);
+    any = any || across[a];
+    if (!across[a]) {
+      S += s.w[a];
+      gS += s.grad[a];
+    }
+  }
+  // Kept corners carrying less than half the weight leave the stencil
+  // whole: renormalised, their few nodes' velocities and gradients are
+  // magnified by 1 / S (measured on a funnel of a 3 mm shell at 1 cm
+  // cells: with 0.05 some grains reached 21.7 m/s, with 0.25 2.7 m/s, with
+  // 0.5 at most 1.9 m/s, the free fall's).
+  constexpr double kLeastOwnWeight = 0.5;
+  if (!any || !(S >= kLeastOwnWeight)) return;
+  for (int a = 0; a < NC; ++a) {
+    if (across[a]) {
+      s.w[a] = 0.0;
+      s.grad[a].setZero();
+    } else {
+      s.w[a] /= S;
+      s.grad[a] = (s.grad[a] - s.w[a] * gS) / S;
+    }
+  }
+}
+
+#define SABLIER_INSTANTIATE(D)                     \
+  template void Simulation<D>::find_thin_solids(); \
+  template void Simulation<D>::keep_own_side(const Vec<D>&, std::int64_t, Q1Stencil<D>&) const;
+SABLIER_INSTANTIATE(2)
+SABLIER_INSTANTIATE(3)
+#undef SABLIER_INSTANTIATE
+
+}  // namespace sablier
