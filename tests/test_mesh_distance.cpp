@@ -224,8 +224,10 @@ TriangleMesh wedge(double x0, double x1, double y, double z0, double z1, double 
 // Samples every 5 mm (half of a 1 cm cell, as the simulation samples) the
 // distance of `mesh` and checks it at `points` random points of [lo, hi]
 // that `where` accepts: its sign against the winding number, its normal's
-// length, and inside no deeper than `deepest`. Returns how many points were
-// inside.
+// length, and inside no deeper than `deepest`; in the cells of exact
+// distances, its size against the mesh's own (the tree's branch and
+// bound), which the cell's list, read nearest first and cut short, must
+// reproduce. Returns how many points were inside.
 template <class Where>
 int check_sampled_sign(const TriangleMesh& mesh, const Point3& lo, const Point3& hi, double deepest,
                        int points, const Where& where) {
@@ -235,7 +237,7 @@ int check_sampled_sign(const TriangleMesh& mesh, const Point3& lo, const Point3&
   EXPECT_GT(grid.exact_cells(), 0);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  int inside = 0;
+  int inside = 0, exact = 0;
   for (int k = 0; k < points; ++k) {
     Point3 p{};
     for (int a = 0; a < 3; ++a) p[a] = lo[a] + (hi[a] - lo[a]) * u(rng);
@@ -245,13 +247,18 @@ int check_sampled_sign(const TriangleMesh& mesh, const Point3& lo, const Point3&
     const bool in = solid->contains(p);
     inside += in;
     EXPECT_EQ(d < 0.0, in) << "at " << p[0] << " " << p[1] << " " << p[2] << ": " << d;
+    if (grid.exact_at(p)) {
+      ++exact;
+      EXPECT_NEAR(std::abs(d), solid->distance(p), 1e-12);
+    }
     if (in) {
       EXPECT_GE(d, -deepest - 1e-12);
     }
     EXPECT_NEAR(length(n), 1.0, 1e-9);
   }
-  std::cout << inside << " of " << points << " points inside, " << grid.exact_cells()
-            << " exact cells\n";
+  std::cout << inside << " of " << points << " points inside, " << exact << " in "
+            << grid.exact_cells() << " exact cells\n";
+  EXPECT_GT(exact, points / 20);
   return inside;
 }
 

@@ -135,6 +135,7 @@ void DistanceGrid::mark_folds() {
   slot_.assign(static_cast<std::size_t>(total), -1);
   list_begin_.assign(1, 0);
   list_.clear();
+  list_distance_.clear();
   triangles_.clear();
   std::vector<std::int32_t> local(count, -1);
   std::vector<Point3> near;
@@ -174,8 +175,14 @@ void DistanceGrid::mark_folds() {
           n = {-n[0], -n[1], -n[2]};
         double r2 = 0.0;
         for (const Point3& c : v) r2 = std::max(r2, dot(sub(c, mid), sub(c, mid)));
+        std::array<double, 3> angle{};
+        for (int c = 0; c < 3; ++c) {
+          const Point3 x = sub(v[(c + 1) % 3], v[c]), y = sub(v[(c + 2) % 3], v[c]);
+          angle[static_cast<std::size_t>(c)] =
+              std::atan2(std::sqrt(dot(cross(x, y), cross(x, y))), dot(x, y));
+        }
         local[t] = static_cast<std::int32_t>(triangles_.size());
-        triangles_.push_back({v, n, mid, std::sqrt(r2)});
+        triangles_.push_back({v, n, mid, std::sqrt(r2), angle});
       }
       list_.push_back(local[t]);
     }
@@ -188,8 +195,10 @@ void DistanceGrid::mark_folds() {
       order.emplace_back(dot(r, r), list_[x]);
     }
     std::sort(order.begin(), order.end());
-    for (std::size_t x = 0; x < order.size(); ++x)
+    for (std::size_t x = 0; x < order.size(); ++x) {
       list_[static_cast<std::size_t>(list_begin_.back()) + x] = order[x].second;
+      list_distance_.push_back(std::sqrt(order[x].first));
+    }
     list_begin_.push_back(static_cast<std::int32_t>(list_.size()));
   }
 }
@@ -205,16 +214,23 @@ std::int64_t DistanceGrid::exact_cells() const {
 // Aanaes 2005): a face's normal, the sum of an edge's two faces' normals,
 // or of a vertex's faces' normals weighted by their angles there. Returns
 // false when the nearest triangle is further than that, or p lies on the
-// surface, or the pseudo-normal leaves the side undecided.
-bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double* distance,
-                                  Point3* normal) const {
+// surface, or the pseudo-normal leaves the side undecided. p lies
+// `off_centre` from the cell's centre, so a triangle D from the centre is
+// at least D - off_centre from p: the list, nearest to the centre first,
+// is read only as far as a triangle could still be nearer than the best.
+bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double off_centre,
+                                  double* distance, Point3* normal) const {
   const std::int32_t b = list_begin_[static_cast<std::size_t>(slot)],
                      e = list_begin_[static_cast<std::size_t>(slot) + 1];
+  // Margins for the rounding of the listed distances and of off_centre.
+  const double reach = off_centre * (1.0 + 1e-12) + 1e-12 * h_;
   double best2 = HUGE_VAL;
   Point3 q{};
   std::int32_t nearest = -1;
   TriangleFeature feature = TriangleFeature::Face;
   for (std::int32_t k = b; k < e; ++k) {
+    const double beyond = list_distance_[static_cast<std::size_t>(k)] - reach;
+    if (beyond > 0.0 && beyond * beyond > best2) break;  // these and the rest are farther
     const Tri& t = triangles_[static_cast<std::size_t>(list_[static_cast<std::size_t>(k)])];
     const double bound = std::sqrt(dot(sub(p, t.centre), sub(p, t.centre))) - t.radius;
     if (bound > 0.0 && bound * bound >= best2) continue;  // no nearer than the best
@@ -253,8 +269,12 @@ bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double* di
         u = t.v[2], w = t.v[0], vertex = false;
         break;
     }
+    // A triangle that has q lies no farther from the cell's centre than q.
+    const double q_reach =
+        (std::sqrt(dot(sub(p, q), sub(p, q))) + off_centre) * (1.0 + 1e-12) + 1e-12 * h_;
     m = {0.0, 0.0, 0.0};
     for (std::int32_t k = b; k < e; ++k) {
+      if (list_distance_[static_cast<std::size_t>(k)] > q_reach) break;
       const Tri& o = triangles_[static_cast<std::size_t>(list_[static_cast<std::size_t>(k)])];
       int iu = -1;
       bool has_w = false;
@@ -263,11 +283,8 @@ bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double* di
         has_w = has_w || o.v[c] == w;
       }
       if (iu < 0 || (!vertex && !has_w)) continue;
-      double weight = 1.0;  // an edge's two faces count alike
-      if (vertex) {
-        const Point3 x = sub(o.v[(iu + 1) % 3], o.v[iu]), y = sub(o.v[(iu + 2) % 3], o.v[iu]);
-        weight = std::atan2(std::sqrt(dot(cross(x, y), cross(x, y))), dot(x, y));
-      }
+      // An edge's two faces count alike.
+      const double weight = vertex ? o.angle[static_cast<std::size_t>(iu)] : 1.0;
       for (int c = 0; c < 3; ++c) m[c] += weight * o.n[c];
     }
   }
@@ -278,6 +295,17 @@ bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double* di
   *distance = s * d;
   *normal = {s * r[0] / d, s * r[1] / d, s * r[2] / d};
   return true;
+}
+
+bool DistanceGrid::exact_at(const Point3& p) const {
+  std::array<int, 3> c{};
+  for (int a = 0; a < 3; ++a) {
+    const double u = (p[a] - lo_[a]) / h_;
+    if (!(u >= 0.0 && u <= n_[a] - 1)) return false;  // beyond the sampled box
+    c[a] = std::min(static_cast<int>(u), n_[a] - 2);
+  }
+  return slot_[static_cast<std::size_t>((std::int64_t(c[2]) * (n_[1] - 1) + c[1]) * (n_[0] - 1) +
+                                        c[0])] >= 0;
 }
 
 double DistanceGrid::signed_distance(const Point3& p, Point3* normal) const {
@@ -324,8 +352,11 @@ double DistanceGrid::signed_distance(const Point3& p, Point3* normal) const {
     // A marked cell: the exact distance, by its own triangles if it can,
     // else by the whole mesh's tree; on the surface itself (d = 0) the
     // interpolated normal stands.
+    const Point3 centre{lo_[0] + (c[0] + 0.5) * h_, lo_[1] + (c[1] + 0.5) * h_,
+                        lo_[2] + (c[2] + 0.5) * h_};
     double d = 0.0;
-    if (local_distance(slot, p, &d, normal)) return d;
+    if (local_distance(slot, p, std::sqrt(dot(sub(p, centre), sub(p, centre))), &d, normal))
+      return d;
     Point3 q{};
     d = mesh_->distance(p, &q, band_);
     if (!(d < band_)) return v;

@@ -68,12 +68,13 @@ void Simulation<D>::grain_volume_at_positions() {
     for (int a = 0; a < D; ++a) inside = inside && x[a] > 0.0 && x[a] < upper[a];
     move_base_[p] = inside ? grid_.cell_base_node(grid_.cell_of(x)) : -1;
   }
+  find_own_sides();  // this round's positions, for its passes
   move_excess_.assign(grid_.node_count(), 0.0);
   const std::int64_t top_stride = grid_.node_stride(D - 1);
   scatter_by_layers<D>(move_base_, top_stride, grid_.node_count() / top_stride,
                        [&](std::int64_t p, unsigned mask) {
                          std::int64_t base = 0;
-                         const Q1Stencil<D> s = stencil_at(particles_.position[p], &base);
+                         const Q1Stencil<D> s = stencil_of(p, &base);
                          for (int a = 0; a < NC; ++a)
                            if (mask >> a & 1)
                              move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
@@ -116,7 +117,7 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       if (!near) continue;
       Vec<D>& x = particles_.position[p];
       std::int64_t again = 0;  // == base
-      const Q1Stencil<D> s = stencil_at(x, &again);
+      const Q1Stencil<D> s = stencil_of(p, &again);
       Vec<D> grad = Vec<D>::Zero();
       for (int a = 0; a < NC; ++a) grad += move_excess_[base + corner[a]] * s.grad[a];
       if (grad.squaredNorm() == 0.0) continue;
@@ -232,7 +233,7 @@ void Simulation<D>::project_assemble() {
   scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
                        [&](std::int64_t p, unsigned mask) {
                          std::int64_t base = 0;
-                         const Q1Stencil<D> s = stencil_at(particles_.position[p], &base);
+                         const Q1Stencil<D> s = stencil_of(p, &base);
                          const double v = particles_.volume[p];
                          for (int a = 0; a < NC; ++a) {
                            if (!(mask >> a & 1)) continue;
@@ -298,7 +299,7 @@ void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, 
     if (!near) continue;
     Vec<D>& x = particles_.position[p];
     std::int64_t again = 0;
-    const Q1Stencil<D> s = stencil_at(x, &again);
+    const Q1Stencil<D> s = stencil_of(p, &again);
     Vec<D> d = Vec<D>::Zero();
     for (int a = 0; a < NC; ++a) d -= project_q_[base + corner[a]] * s.grad[a];
     const double len = d.norm();

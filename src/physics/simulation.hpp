@@ -177,15 +177,18 @@ class Simulation {
   double mass_volume(std::size_t p) const {
     return materials_[particles_.material[p]].mass_ratio * particles_.volume[p];
   }
-  // The Q1 shape functions at x, in x's cell, and that cell's base node.
-  Q1Stencil<D> stencil_at(const Vec<D>& x, std::int64_t* base) const {
+  // The Q1 shape functions at grain p's position, in its cell, and that
+  // cell's base node; next to a thin solid, its own side's (across_, which
+  // find_own_sides must have computed at the grain's present position).
+  Q1Stencil<D> stencil_of(std::int64_t p, std::int64_t* base) const {
+    const Vec<D>& x = particles_.position[p];
     const double h = grid_.h();
     const auto cc = grid_.cell_of(x);
     *base = grid_.cell_base_node(cc);
     Vec<D> local;
     for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
     Q1Stencil<D> s = q1_stencil<D>(local, h);
-    if (!thin_solids_.empty()) keep_own_side(x, *base, s);
+    if (!thin_solids_.empty()) keep_own_side(across_[p], s);
     return s;
   }
   // The fixed, still solids thinner than kThinSolidCells cells (the
@@ -194,10 +197,19 @@ class Simulation {
   // The compatible transfer next to them (thin_solids.cpp): a grain's
   // shape functions limited to the corners of its cell on its own side of
   // every fixed solid thinner than the cells resolve, renormalised.
-  void keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<D>& s) const;
+  // corners_across gives the corners of the cell with base node `base` that
+  // lie across such a solid from x (bit a for corner a; 0 when the stencil
+  // stays whole); find_own_sides keeps it per grain in across_, for the
+  // grains' present positions (after the sort of a step, and at each round
+  // of the decompaction), so that P2G, G2P and the decompaction's passes
+  // over the same positions query the solids' distance once.
+  std::uint8_t corners_across(const Vec<D>& x, std::int64_t base) const;
+  void find_own_sides();
+  void keep_own_side(std::uint8_t across, Q1Stencil<D>& s) const;
   std::vector<Obstacle<D>> thin_solids_;    // fixed, still, thinner than kThinSolidCells
   std::vector<double> thin_node_distance_;  // per node: signed distance to them, m
   std::vector<Vec<D>> thin_node_normal_;    // and its unit gradient
+  std::vector<std::uint8_t> across_;        // per grain: corners_across at its position
 
   SceneConfig scene_;
   DenseGrid<D> grid_;

@@ -44,32 +44,32 @@ void Simulation<D>::find_thin_solids() {
 // opposite ways (normals' dot product negative) and the solid-free balls
 // about the two (their distances) do not cover the segment between them.
 template <int D>
-void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<D>& s) const {
+std::uint8_t Simulation<D>::corners_across(const Vec<D>& x, std::int64_t base) const {
   constexpr int NC = ipow(2, D);
   const double h = grid_.h();
   const auto corner = grid_.corner_offsets();
   bool near = false;  // a corner within reach of a thin solid
   for (int a = 0; a < NC; ++a) near = near || thin_node_distance_[base + corner[a]] < 2.0 * h;
-  if (!near) return;
+  if (!near) return 0;
   Vec<D> n;
   const double d = obstacle_distance(thin_solids_, x, &n);
-  if (!(d >= 0.0)) return;  // inside: put back after the step
-  double S = 0.0;
-  Vec<D> gS = Vec<D>::Zero();
-  std::array<bool, NC> across{};
-  bool any = false;
+  if (!(d >= 0.0)) return 0;  // inside: put back after the step
+  Vec<D> local;               // as stencil_of has it: x in cells from the base node
+  const auto nb = grid_.node_coords(base);
+  for (int k = 0; k < D; ++k) local[k] = (x[k] - nb[k] * h) / h;
+  const Q1Stencil<D> s = q1_stencil<D>(local, h);
+  double S = 0.0;  // the kept corners' weight
+  unsigned across = 0;
   for (int a = 0; a < NC; ++a) {
     const std::int64_t node = base + corner[a];
     const double dn = thin_node_distance_[node];
     const auto nc = grid_.node_coords(node);
     Vec<D> xa;
     for (int k = 0; k < D; ++k) xa[k] = nc[k] * h;
-    across[a] = dn < 0.0 || (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + dn);
-    any = any || across[a];
-    if (!across[a]) {
+    if (dn < 0.0 || (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + dn))
+      across |= 1u << a;
+    else
       S += s.w[a];
-      gS += s.grad[a];
-    }
   }
   // Kept corners carrying less than half the weight leave the stencil
   // whole: renormalised, their few nodes' velocities and gradients are
@@ -77,9 +77,43 @@ void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<
   // cells: with 0.05 some grains reached 21.7 m/s, with 0.25 2.7 m/s, with
   // 0.5 at most 1.9 m/s, the free fall's).
   constexpr double kLeastOwnWeight = 0.5;
-  if (!any || !(S >= kLeastOwnWeight)) return;
+  if (!(S >= kLeastOwnWeight)) return 0;
+  return static_cast<std::uint8_t>(across);
+}
+
+// Every grain's corners across at its present position (the grains
+// outside the box, which the sort drops and the decompaction leaves alone,
+// get 0).
+template <int D>
+void Simulation<D>::find_own_sides() {
+  if (thin_solids_.empty()) return;
+  const std::int64_t n = static_cast<std::int64_t>(particles_.size());
+  const double h = grid_.h();
+  Vec<D> upper;
+  for (int a = 0; a < D; ++a) upper[a] = grid_.cells()[a] * h;
+  across_.resize(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < n; ++p) {
+    const Vec<D>& x = particles_.position[p];
+    bool inside = true;
+    for (int a = 0; a < D; ++a) inside = inside && x[a] >= 0.0 && x[a] <= upper[a];
+    across_[p] = inside ? corners_across(x, grid_.cell_base_node(grid_.cell_of(x))) : 0;
+  }
+}
+
+template <int D>
+void Simulation<D>::keep_own_side(std::uint8_t across, Q1Stencil<D>& s) const {
+  constexpr int NC = ipow(2, D);
+  if (across == 0) return;
+  double S = 0.0;
+  Vec<D> gS = Vec<D>::Zero();
+  for (int a = 0; a < NC; ++a)
+    if (!(across >> a & 1)) {
+      S += s.w[a];
+      gS += s.grad[a];
+    }
   for (int a = 0; a < NC; ++a) {
-    if (across[a]) {
+    if (across >> a & 1) {
       s.w[a] = 0.0;
       s.grad[a].setZero();
     } else {
@@ -89,9 +123,11 @@ void Simulation<D>::keep_own_side(const Vec<D>& x, std::int64_t base, Q1Stencil<
   }
 }
 
-#define SABLIER_INSTANTIATE(D)                     \
-  template void Simulation<D>::find_thin_solids(); \
-  template void Simulation<D>::keep_own_side(const Vec<D>&, std::int64_t, Q1Stencil<D>&) const;
+#define SABLIER_INSTANTIATE(D)                                                            \
+  template void Simulation<D>::find_thin_solids();                                        \
+  template std::uint8_t Simulation<D>::corners_across(const Vec<D>&, std::int64_t) const; \
+  template void Simulation<D>::find_own_sides();                                          \
+  template void Simulation<D>::keep_own_side(std::uint8_t, Q1Stencil<D>&) const;
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
 #undef SABLIER_INSTANTIATE

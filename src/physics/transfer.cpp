@@ -56,6 +56,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
   // Stress rows: the nodes of cells holding particles, laid out in zones and
   // colours (solver/zones.hpp): rows of one run have disjoint stencils.
   const auto corner = grid_.corner_offsets();
+  find_own_sides();  // next to thin solids: for P2G here and G2P after the solve
   std::fill(row_of_node_.begin(), row_of_node_.end(), -1);
   std::vector<std::int64_t> nodes;
   std::vector<std::array<int, D>> coords;
@@ -422,7 +423,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const Vec<D>& x = particles_.position[p];
         const Vec<D> local = (x - origin) / h;
         Q1Stencil<D> s = q1_stencil<D>(local, h);
-        if (!thin_solids_.empty()) keep_own_side(x, base, s);
+        if (!thin_solids_.empty()) keep_own_side(across_[p], s);
         const Material& mp = mats[particles_.material[p]];
         const double vp = particles_.volume[p];
         const double mass_p = mp.mass_ratio * vp;  // rho_p V_p / rho_0
@@ -483,7 +484,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
   for (std::int64_t p = 0; p < n; ++p) {
     Vec<D>& x = particles_.position[p];
     std::int64_t base = 0;
-    const Q1Stencil<D> s = stencil_at(x, &base);
+    const Q1Stencil<D> s = stencil_of(p, &base);  // P2G's positions: across_ stands
     Vec<D> u = Vec<D>::Zero();
     Mat<D> grad = Mat<D>::Zero();
     SymVec<D> lambda = SymVec<D>::Zero();
