@@ -178,8 +178,8 @@ int check_command(const std::string& path, const std::vector<std::string>& overr
     } else {
       print_summary<3>(s);
     }
-    for (const std::string& line : thin_solid_warnings(s))
-      std::fprintf(stderr, "%s\n", line.c_str());
+    for (const SceneMessage& m : thin_solid_warnings(s))
+      std::fprintf(stderr, "%s\n", m.line().c_str());
     std::printf("ok\n");
     return 0;
   } catch (const SceneError& e) {

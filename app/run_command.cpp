@@ -446,8 +446,8 @@ int start_run(const RunOptions& opt) {
     write_file_atomic((dir / "scene.toml").string(), set.scene_text);
     if (const std::string obj = format_obstacles_obj(scene); !obj.empty())
       write_file_atomic((dir / "obstacles.obj").string(), obj);
-    for (const std::string& line : thin_solid_warnings(scene))  // notes unless --quiet
-      if (!opt.quiet || line.rfind("warning", 0) == 0) std::fprintf(stderr, "%s\n", line.c_str());
+    for (const SceneMessage& m : thin_solid_warnings(scene))  // notes unless --quiet
+      if (!opt.quiet || m.warning) std::fprintf(stderr, "%s\n", m.line().c_str());
     start_threads_and_signals(opt.threads);
     if (scene.dimension == 2) return Runner<2>(scene, set, Simulation<2>(scene)).run();
     return Runner<3>(scene, set, Simulation<3>(scene)).run();

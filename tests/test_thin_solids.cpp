@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -100,17 +101,20 @@ TEST(ThinSolids, ThicknessOfWallsPlatesAndMeshes) {
 TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
   const SceneConfig thin = parse_scene(funnel2d(0.003), "thin.toml");
   EXPECT_EQ(thin.solver.decompaction, Decompaction::Project);
-  const std::vector<std::string> notes = thin_solid_warnings(thin);
+  const std::vector<SceneMessage> notes = thin_solid_warnings(thin);
   ASSERT_EQ(notes.size(), 2u);
-  EXPECT_EQ(notes[0].rfind("note: thin.toml: obstacle[0] (polygon) is 3 mm thick", 0), 0u)
-      << notes[0];
+  EXPECT_FALSE(notes[0].warning);
+  EXPECT_EQ(notes[0].line().rfind("note: thin.toml: obstacle[0] (polygon) is 3 mm thick", 0), 0u)
+      << notes[0].line();
 
   const SceneConfig moved =
       parse_scene(funnel2d(0.003, "[solver]\ndecompaction = \"move\"\n"), "moved.toml");
   EXPECT_EQ(moved.solver.decompaction, Decompaction::Move);
-  const std::vector<std::string> warnings = thin_solid_warnings(moved);
+  const std::vector<SceneMessage> warnings = thin_solid_warnings(moved);
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[1].rfind("warning: moved.toml: obstacle[1] (polygon)", 0), 0u) << warnings[1];
+  EXPECT_TRUE(warnings[1].warning);
+  EXPECT_EQ(warnings[1].line().rfind("warning: moved.toml: obstacle[1] (polygon)", 0), 0u)
+      << warnings[1].line();
 
   const SceneConfig thick = parse_scene(funnel2d(0.02), "thick.toml");
   EXPECT_EQ(thick.solver.decompaction, Decompaction::Move);
@@ -123,6 +127,35 @@ TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
       "body.toml");
   EXPECT_EQ(body.solver.decompaction, Decompaction::Move);
   EXPECT_TRUE(thin_solid_warnings(body).empty());
+}
+
+// What the tool prints: `check` and `run` the notes, `run --quiet` only
+// the warnings (one frame of each funnel).
+TEST(ThinSolids, RunQuietHidesTheNotesNotTheWarnings) {
+  const fs::path dir = test::fresh_dir("thin_messages");
+  fs::create_directories(dir);
+  const fs::path thin = dir / "thin.toml", moved = dir / "moved.toml";
+  std::ofstream(thin) << funnel2d(0.003, "[time]\nframes = 1\n");
+  std::ofstream(moved) << funnel2d(0.003,
+                                   "[time]\nframes = 1\n[solver]\ndecompaction = \"move\"\n");
+  const test::Result check = test::sablier("check " + thin.string());
+  ASSERT_EQ(check.code, 0) << check.output;
+  EXPECT_NE(check.output.find("note: " + thin.string() + ": obstacle[0]"), std::string::npos)
+      << check.output;
+  const test::Result loud =
+      test::sablier("run " + thin.string() + " --out " + (dir / "a").string());
+  ASSERT_EQ(loud.code, 0) << loud.output;
+  EXPECT_NE(loud.output.find("note: " + thin.string() + ": obstacle[1]"), std::string::npos)
+      << loud.output;
+  const test::Result quiet =
+      test::sablier("run " + thin.string() + " --quiet --out " + (dir / "b").string());
+  ASSERT_EQ(quiet.code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("obstacle["), std::string::npos) << quiet.output;
+  const test::Result warned =
+      test::sablier("run " + moved.string() + " --quiet --out " + (dir / "c").string());
+  ASSERT_EQ(warned.code, 0) << warned.output;
+  EXPECT_NE(warned.output.find("warning: " + moved.string() + ": obstacle[0]"), std::string::npos)
+      << warned.output;
 }
 
 // The funnel with walls 3 mm across (0.3 cells) against the same funnel

@@ -52,11 +52,20 @@ bool thinnest_part(const ObstacleConfig& o, int dimension, double below, ThinPar
 // projection (scene/thin_solids.cpp).
 void measure_thin_solids(SceneConfig& s);
 
-// One line for each fixed obstacle of `s` thinner than kThinSolidCells
-// cells (ObstacleConfig::thin, measured when the scene was read), starting
-// "note: " or "warning: ": which, how thin, where, and what the
-// decompaction does about it.
-std::vector<std::string> thin_solid_warnings(const SceneConfig& s);
+// A message about a scene that is valid but may not do what its author
+// expects: a note (the tool dealt with it; `sablier run --quiet` hides it)
+// or a warning (always shown).
+struct SceneMessage {
+  bool warning = false;
+  std::string text;  // without the "note: " or "warning: " that line() puts first
+  std::string line() const { return (warning ? "warning: " : "note: ") + text; }
+};
+
+// One message for each fixed obstacle of `s` thinner than kThinSolidCells
+// cells (ObstacleConfig::thin, measured when the scene was read): which,
+// how thin, where, and what the decompaction does about it; a note under
+// the projection, a warning under another decompaction.
+std::vector<SceneMessage> thin_solid_warnings(const SceneConfig& s);
 
 // The keys these blocks take, as known_scene_keys() names them.
 std::vector<std::string> obstacle_scene_keys();

@@ -143,8 +143,8 @@ bool thinnest_part(const ObstacleConfig& o, int dimension, double below, ThinPar
   return true;
 }
 
-std::vector<std::string> thin_solid_warnings(const SceneConfig& s) {
-  std::vector<std::string> lines;
+std::vector<SceneMessage> thin_solid_warnings(const SceneConfig& s) {
+  std::vector<SceneMessage> messages;
   const double h = s.cell_size(), below = kThinSolidCells * h;
   const bool projected = s.solver.decompaction == Decompaction::Project;
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
@@ -160,17 +160,18 @@ std::vector<std::string> thin_solid_warnings(const SceneConfig& s) {
         "which the grid does not resolve",
         s.source, k, obstacle_shape_name(o.shape, s.dimension), 1e3 * thin.thickness, where,
         kThinSolidCells, 1e3 * below);
-    lines.push_back(
+    messages.push_back(
         projected
-            ? "note: " + what +
-                  ": the sand next to it is kept at phi_max by solver.decompaction = "
-                  "\"project\" (the default with such a solid; docs/scenes.md, \"Thin solids\")"
-            : "warning: " + what +
-                  ": under this solver.decompaction the sand flowing along it may pack beyond "
-                  "phi_max; \"project\", the default with such a solid, keeps it there "
-                  "(docs/scenes.md, \"Thin solids\")");
+            ? SceneMessage{false, what + ": the sand next to it is kept at phi_max by "
+                                         "solver.decompaction = \"project\" (the default with such "
+                                         "a solid; docs/scenes.md, \"Thin solids\")"}
+            : SceneMessage{true, what +
+                                     ": under this solver.decompaction the sand flowing along it "
+                                     "may pack beyond phi_max; \"project\", the default with "
+                                     "such a solid, keeps it there (docs/scenes.md, \"Thin "
+                                     "solids\")"});
   }
-  return lines;
+  return messages;
 }
 
 }  // namespace sablier
