@@ -40,4 +40,31 @@ inline Q1Stencil<D> q1_stencil(const Vec<D>& local, double h) {
   return s;
 }
 
+// The stencil limited to the corners whose bit is clear in `across` (the
+// compatible transfer next to thin solids, physics/thin_solids.cpp):
+// weights N_c / S and gradients (grad N_c - N_c grad S / S) / S over the
+// kept corners, S their weights' sum, so that the weights still sum to one
+// and the gradients to zero; the others zero. `across` 0 leaves it whole.
+template <int D>
+inline void keep_corners(unsigned across, Q1Stencil<D>& s) {
+  constexpr int NC = Q1Stencil<D>::NC;
+  if (across == 0) return;
+  double S = 0.0;
+  Vec<D> gS = Vec<D>::Zero();
+  for (int c = 0; c < NC; ++c)
+    if (!(across >> c & 1)) {
+      S += s.w[c];
+      gS += s.grad[c];
+    }
+  for (int c = 0; c < NC; ++c) {
+    if (across >> c & 1) {
+      s.w[c] = 0.0;
+      s.grad[c].setZero();
+    } else {
+      s.w[c] /= S;
+      s.grad[c] = (s.grad[c] - s.w[c] * gS) / S;
+    }
+  }
+}
+
 }  // namespace sablier

@@ -304,6 +304,7 @@ int Simulation<D>::unconstrained_velocity(double dt) {
   if (scene_.material.viscosity <= 0.0) return 0;
   ViscousSystem<D> sys{grid_,      particles_, cell_start_, cells_by_parity_,
                        node_mass_, free_mask_, rho0_ / dt,  scene_.material.viscosity};
+  if (!thin_solids_.empty()) sys.across = across_.data();  // P2G's positions
   return solve_viscous(sys, P.velocity);
 }
 

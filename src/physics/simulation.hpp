@@ -188,7 +188,7 @@ class Simulation {
     Vec<D> local;
     for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
     Q1Stencil<D> s = q1_stencil<D>(local, h);
-    if (!thin_solids_.empty()) keep_own_side(across_[p], s);
+    if (!thin_solids_.empty()) keep_corners<D>(across_[p], s);
     return s;
   }
   // The fixed, still solids thinner than kThinSolidCells cells (the
@@ -196,16 +196,16 @@ class Simulation {
   void find_thin_solids();
   // The compatible transfer next to them (thin_solids.cpp): a grain's
   // shape functions limited to the corners of its cell on its own side of
-  // every fixed solid thinner than the cells resolve, renormalised.
-  // corners_across gives the corners of the cell with base node `base` that
-  // lie across such a solid from x (bit a for corner a; 0 when the stencil
-  // stays whole); find_own_sides keeps it per grain in across_, for the
-  // grains' present positions (after the sort of a step, and at each round
-  // of the decompaction), so that P2G, G2P and the decompaction's passes
-  // over the same positions query the solids' distance once.
+  // every fixed solid thinner than the cells resolve, renormalised
+  // (keep_corners, shape.hpp). corners_across gives the corners of the
+  // cell with base node `base` that lie across such a solid from x (bit a
+  // for corner a; 0 when the stencil stays whole); find_own_sides keeps it
+  // per grain in across_, for the grains' present positions (after the
+  // sort of a step, and at each round of the decompaction), so that P2G,
+  // the viscosity, G2P and the decompaction's passes over the same
+  // positions query the solids' distance once.
   std::uint8_t corners_across(const Vec<D>& x, std::int64_t base) const;
   void find_own_sides();
-  void keep_own_side(std::uint8_t across, Q1Stencil<D>& s) const;
   std::vector<Obstacle<D>> thin_solids_;    // fixed, still, thinner than kThinSolidCells
   std::vector<double> thin_node_distance_;  // per node: signed distance to them, m
   std::vector<Vec<D>> thin_node_normal_;    // and its unit gradient

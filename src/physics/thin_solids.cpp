@@ -11,7 +11,7 @@ void Simulation<D>::find_thin_solids() {
   const std::int64_t nodes = grid_.node_count();
   // Fixed solids thinner than the cells resolve, standing still: the
   // grains next to them keep to the nodes on their own side (the
-  // compatible transfer, keep_own_side), which needs each node's distance
+  // compatible transfer, corners_across), which needs each node's distance
   // to them and its normal, computed once.
   for (std::size_t k = 0; k < scene_.obstacles.size(); ++k) {
     const ObstacleConfig& c = scene_.obstacles[k];
@@ -101,33 +101,10 @@ void Simulation<D>::find_own_sides() {
   }
 }
 
-template <int D>
-void Simulation<D>::keep_own_side(std::uint8_t across, Q1Stencil<D>& s) const {
-  constexpr int NC = ipow(2, D);
-  if (across == 0) return;
-  double S = 0.0;
-  Vec<D> gS = Vec<D>::Zero();
-  for (int a = 0; a < NC; ++a)
-    if (!(across >> a & 1)) {
-      S += s.w[a];
-      gS += s.grad[a];
-    }
-  for (int a = 0; a < NC; ++a) {
-    if (across >> a & 1) {
-      s.w[a] = 0.0;
-      s.grad[a].setZero();
-    } else {
-      s.w[a] /= S;
-      s.grad[a] = (s.grad[a] - s.w[a] * gS) / S;
-    }
-  }
-}
-
 #define SABLIER_INSTANTIATE(D)                                                            \
   template void Simulation<D>::find_thin_solids();                                        \
   template std::uint8_t Simulation<D>::corners_across(const Vec<D>&, std::int64_t) const; \
-  template void Simulation<D>::find_own_sides();                                          \
-  template void Simulation<D>::keep_own_side(std::uint8_t, Q1Stencil<D>&) const;
+  template void Simulation<D>::find_own_sides();
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
 #undef SABLIER_INSTANTIATE

@@ -423,7 +423,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const Vec<D>& x = particles_.position[p];
         const Vec<D> local = (x - origin) / h;
         Q1Stencil<D> s = q1_stencil<D>(local, h);
-        if (!thin_solids_.empty()) keep_own_side(across_[p], s);
+        if (!thin_solids_.empty()) keep_corners<D>(across_[p], s);
         const Material& mp = mats[particles_.material[p]];
         const double vp = particles_.volume[p];
         const double mass_p = mp.mass_ratio * vp;  // rho_p V_p / rho_0

@@ -44,7 +44,8 @@ void apply_operator(const ViscousSystem<D>& sys, const std::vector<Vec<D>>& u,
       for (std::int64_t p = sys.cell_start[cells[ci]]; p < sys.cell_start[cells[ci] + 1]; ++p) {
         Vec<D> local;
         for (int a = 0; a < D; ++a) local[a] = sys.particles.position[p][a] / h - cc[a];
-        const Q1Stencil<D> s = q1_stencil<D>(local, h);
+        Q1Stencil<D> s = q1_stencil<D>(local, h);
+        if (sys.across != nullptr) keep_corners<D>(sys.across[p], s);
         Mat<D> grad = Mat<D>::Zero();
         for (int c = 0; c < NC; ++c) grad.noalias() += u[base + corner[c]] * s.grad[c].transpose();
         const Mat<D> stress =
