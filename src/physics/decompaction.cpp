@@ -89,6 +89,7 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
   const std::int64_t nodes = grid_.node_count();
   const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
+  place_thin_solids(time_ + dt);  // where the step leaves them
   Vec<D> upper;
   for (int a = 0; a < D; ++a) upper[a] = grid_.cells()[a] * h;
   const auto inside = [&upper](const Vec<D>& x) {
@@ -170,6 +171,7 @@ constexpr int kProjectSweeps = 200;     // at most, per round
 template <int D>
 double Simulation<D>::project_grains_apart(int rounds, double dt) {
   const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
+  place_thin_solids(time_ + dt);  // where the step leaves them
   move_lift_.assign(particles_.size(), 0.0);
   // Rounds, then one more look at where the last one left the grains.
   for (int round = 0; round <= rounds; ++round) {

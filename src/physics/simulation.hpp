@@ -191,9 +191,11 @@ class Simulation {
     if (!thin_solids_.empty()) keep_corners<D>(across_[p], s);
     return s;
   }
-  // The fixed, still solids thinner than kThinSolidCells cells (the
-  // scene's measure), and each node's distance to them (thin_solids.cpp).
+  // The fixed solids thinner than kThinSolidCells cells (the scene's
+  // measure), and each node's distance to them where they are at time t
+  // (thin_solids.cpp).
   void find_thin_solids();
+  void place_thin_solids(double t);
   // The compatible transfer next to them (thin_solids.cpp): a grain's
   // shape functions limited to the corners of its cell on its own side of
   // every fixed solid thinner than the cells resolve, renormalised
@@ -206,7 +208,12 @@ class Simulation {
   // positions query the solids' distance once.
   std::uint8_t corners_across(const Vec<D>& x, std::int64_t base) const;
   void find_own_sides();
-  std::vector<Obstacle<D>> thin_solids_;    // fixed, still, thinner than kThinSolidCells
+  std::vector<std::size_t>
+      thin_index_;            // obstacles_ of the fixed solids thinner than kThinSolidCells
+  bool thin_move_ = false;    // one of them moves or is taken away
+  bool thin_placed_ = false;  // thin_solids_ and the nodes' distances set,
+  double thin_time_ = 0.0;    // for this time
+  std::vector<Obstacle<D>> thin_solids_;    // where they are then
   std::vector<double> thin_node_distance_;  // per node: signed distance to them, m
   std::vector<Vec<D>> thin_node_normal_;    // and its unit gradient
   std::vector<std::uint8_t> across_;        // per grain: corners_across at its position

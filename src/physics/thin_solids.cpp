@@ -8,27 +8,40 @@ namespace sablier {
 
 template <int D>
 void Simulation<D>::find_thin_solids() {
-  const std::int64_t nodes = grid_.node_count();
-  // Fixed solids thinner than the cells resolve, standing still: the
+  // Fixed solids thinner than the cells resolve (not rigid bodies): the
   // grains next to them keep to the nodes on their own side (the
   // compatible transfer, corners_across), which needs each node's distance
-  // to them and its normal, computed once.
+  // to them and its normal: computed once for solids that stand still, at
+  // each new time for solids that move or are taken away.
   for (std::size_t k = 0; k < scene_.obstacles.size(); ++k) {
     const ObstacleConfig& c = scene_.obstacles[k];
-    if (c.thin > 0.0 && !c.dynamic() && !moves_into_sand(obstacles_[k]) && !std::isfinite(c.until))
-      thin_solids_.push_back(obstacles_[k]);
+    if (!(c.thin > 0.0) || c.dynamic()) continue;
+    thin_index_.push_back(k);
+    thin_move_ = thin_move_ || moves_into_sand(obstacles_[k]) || std::isfinite(c.until);
   }
-  if (!thin_solids_.empty()) {
-    thin_node_distance_.assign(nodes, 0.0);
-    thin_node_normal_.assign(nodes, Vec<D>::Zero());
+  if (thin_index_.empty()) return;
+  thin_node_distance_.assign(grid_.node_count(), 0.0);
+  thin_node_normal_.assign(grid_.node_count(), Vec<D>::Zero());
+  place_thin_solids(time_);
+}
+
+// The thin solids where they are at time t, and the nodes' distances to
+// them (kept while t and the solids stay the same).
+template <int D>
+void Simulation<D>::place_thin_solids(double t) {
+  if (thin_index_.empty() || (thin_placed_ && (!thin_move_ || t == thin_time_))) return;
+  thin_solids_.clear();
+  for (std::size_t k : thin_index_) thin_solids_.push_back(at_time(obstacles_[k], t));
+  const std::int64_t nodes = grid_.node_count();
 #pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < nodes; ++i) {
-      const auto nc = grid_.node_coords(i);
-      Vec<D> x;
-      for (int a = 0; a < D; ++a) x[a] = nc[a] * grid_.h();
-      thin_node_distance_[i] = obstacle_distance(thin_solids_, x, &thin_node_normal_[i]);
-    }
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    const auto nc = grid_.node_coords(i);
+    Vec<D> x;
+    for (int a = 0; a < D; ++a) x[a] = nc[a] * grid_.h();
+    thin_node_distance_[i] = obstacle_distance(thin_solids_, x, &thin_node_normal_[i]);
   }
+  thin_placed_ = true;
+  thin_time_ = t;
 }
 
 // The compatible transfer (Hu et al. 2018, CPIC): next to a fixed solid
@@ -53,8 +66,9 @@ std::uint8_t Simulation<D>::corners_across(const Vec<D>& x, std::int64_t base) c
   if (!near) return 0;
   Vec<D> n;
   const double d = obstacle_distance(thin_solids_, x, &n);
-  if (!(d >= 0.0)) return 0;  // inside: put back after the step
-  Vec<D> local;               // as stencil_of has it: x in cells from the base node
+  if (!(d >= 0.0)) return 0;        // inside: put back after the step
+  constexpr double kOnFace = 1e-9;  // cells
+  Vec<D> local;                     // as stencil_of has it: x in cells from the base node
   const auto nb = grid_.node_coords(base);
   for (int k = 0; k < D; ++k) local[k] = (x[k] - nb[k] * h) / h;
   const Q1Stencil<D> s = q1_stencil<D>(local, h);
@@ -66,7 +80,11 @@ std::uint8_t Simulation<D>::corners_across(const Vec<D>& x, std::int64_t base) c
     const auto nc = grid_.node_coords(node);
     Vec<D> xa;
     for (int k = 0; k < D; ++k) xa[k] = nc[k] * h;
-    if (dn < 0.0 || (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + dn))
+    // Inside by more than round-off: a node on the solid's face (a face on
+    // a node plane, whose distance rounds either way) is judged by the
+    // normals like a node outside.
+    if (dn < -kOnFace * h ||
+        (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + std::max(dn, 0.0)))
       across |= 1u << a;
     else
       S += s.w[a];
@@ -104,7 +122,8 @@ void Simulation<D>::find_own_sides() {
 #define SABLIER_INSTANTIATE(D)                                                            \
   template void Simulation<D>::find_thin_solids();                                        \
   template std::uint8_t Simulation<D>::corners_across(const Vec<D>&, std::int64_t) const; \
-  template void Simulation<D>::find_own_sides();
+  template void Simulation<D>::find_own_sides();                                          \
+  template void Simulation<D>::place_thin_solids(double);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
 #undef SABLIER_INSTANTIATE

@@ -56,7 +56,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
   // Stress rows: the nodes of cells holding particles, laid out in zones and
   // colours (solver/zones.hpp): rows of one run have disjoint stencils.
   const auto corner = grid_.corner_offsets();
-  find_own_sides();  // next to thin solids: for P2G here and G2P after the solve
+  place_thin_solids(time_);  // where the step finds them
+  find_own_sides();          // next to thin solids: for P2G here and G2P after the solve
   std::fill(row_of_node_.begin(), row_of_node_.end(), -1);
   std::vector<std::int64_t> nodes;
   std::vector<std::array<int, D>> coords;
