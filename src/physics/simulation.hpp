@@ -208,12 +208,15 @@ class Simulation {
   // positions query the solids' distance once.
   std::uint8_t corners_across(const Vec<D>& x, std::int64_t base) const;
   void find_own_sides();
-  std::vector<std::size_t>
-      thin_index_;            // obstacles_ of the fixed solids thinner than kThinSolidCells
-  bool thin_move_ = false;    // one of them moves or is taken away
-  bool thin_placed_ = false;  // thin_solids_ and the nodes' distances set,
-  double thin_time_ = 0.0;    // for this time
-  std::vector<Obstacle<D>> thin_solids_;    // where they are then
+  // The fixed solids thinner than kThinSolidCells (their indices in
+  // obstacles_), whether one moves or is taken away, and whether
+  // thin_solids_ (where they are) and the nodes' distances are set, for
+  // which time.
+  std::vector<std::size_t> thin_index_;
+  bool thin_move_ = false;
+  bool thin_placed_ = false;
+  double thin_time_ = 0.0;
+  std::vector<Obstacle<D>> thin_solids_;
   std::vector<double> thin_node_distance_;  // per node: signed distance to them, m
   std::vector<Vec<D>> thin_node_normal_;    // and its unit gradient
   std::vector<std::uint8_t> across_;        // per grain: corners_across at its position
