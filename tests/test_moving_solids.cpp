@@ -178,8 +178,8 @@ TEST(MovingSolids, BladeAcrossTheBoxKeepsEveryGrain3D) {
 // blade does (the test above: within 25% of Rankine's passive thrust,
 // same source), keeping the sand at phi_max, since the grains in front of
 // it keep to the nodes on their side (the compatible transfer, at the
-// blade's place at each step): measured 197 N/m over 0.05-0.7 s (-11%),
-// largest phi 0.6051. Without that transfer (the sand in front sharing the
+// blade's place at each step): measured 208 N/m over 0.05-0.7 s (-6%),
+// largest phi 0.6007. Without that transfer (the sand in front sharing the
 // nodes behind the blade) it pushed with 157 N/m (-29%); a 3 mm blade over
 // 0.05-0.6 s with 118 N/m and 190 N/m with it (the 2 cm blade 210), its
 // sand at phi 0.688 and 0.605 (frames from the second on).

@@ -217,9 +217,10 @@ class Simulation {
   bool thin_placed_ = false;
   double thin_time_ = 0.0;
   std::vector<Obstacle<D>> thin_solids_;
-  std::vector<double> thin_node_distance_;  // per node: signed distance to them, m
-  std::vector<Vec<D>> thin_node_normal_;    // and its unit gradient
-  std::vector<std::uint8_t> across_;        // per grain: corners_across at its position
+  std::vector<double> thin_node_distance_;      // per node: signed distance to them, m
+  std::vector<Vec<D>> thin_node_normal_;        // and its unit gradient
+  std::vector<std::uint8_t> thin_node_driven_;  // the nearest moves or is taken away
+  std::vector<std::uint8_t> across_;            // per grain: corners_across at its position
 
   SceneConfig scene_;
   DenseGrid<D> grid_;

@@ -22,6 +22,7 @@ void Simulation<D>::find_thin_solids() {
   if (thin_index_.empty()) return;
   thin_node_distance_.assign(grid_.node_count(), 0.0);
   thin_node_normal_.assign(grid_.node_count(), Vec<D>::Zero());
+  thin_node_driven_.assign(grid_.node_count(), 0);
   place_thin_solids(time_);
 }
 
@@ -38,7 +39,11 @@ void Simulation<D>::place_thin_solids(double t) {
     const auto nc = grid_.node_coords(i);
     Vec<D> x;
     for (int a = 0; a < D; ++a) x[a] = nc[a] * grid_.h();
-    thin_node_distance_[i] = obstacle_distance(thin_solids_, x, &thin_node_normal_[i]);
+    int which = 0;
+    thin_node_distance_[i] = obstacle_distance(thin_solids_, x, &thin_node_normal_[i], &which);
+    const std::size_t k = thin_index_[static_cast<std::size_t>(which)];
+    thin_node_driven_[i] =
+        moves_into_sand(obstacles_[k]) || std::isfinite(scene_.obstacles[k].until) ? 1 : 0;
   }
   thin_placed_ = true;
   thin_time_ = t;
@@ -66,9 +71,8 @@ std::uint8_t Simulation<D>::corners_across(const Vec<D>& x, std::int64_t base) c
   if (!near) return 0;
   Vec<D> n;
   const double d = obstacle_distance(thin_solids_, x, &n);
-  if (!(d >= 0.0)) return 0;        // inside: put back after the step
-  constexpr double kOnFace = 1e-9;  // cells
-  Vec<D> local;                     // as stencil_of has it: x in cells from the base node
+  if (!(d >= 0.0)) return 0;  // inside: put back after the step
+  Vec<D> local;               // as stencil_of has it: x in cells from the base node
   const auto nb = grid_.node_coords(base);
   for (int k = 0; k < D; ++k) local[k] = (x[k] - nb[k] * h) / h;
   const Q1Stencil<D> s = q1_stencil<D>(local, h);
@@ -80,10 +84,19 @@ std::uint8_t Simulation<D>::corners_across(const Vec<D>& x, std::int64_t base) c
     const auto nc = grid_.node_coords(node);
     Vec<D> xa;
     for (int k = 0; k < D; ++k) xa[k] = nc[k] * h;
-    // Inside by more than round-off: a node on the solid's face (a face on
-    // a node plane, whose distance rounds either way) is judged by the
-    // normals like a node outside.
-    if (dn < -kOnFace * h ||
+    // Across: inside the solid, or beyond it by the normals. A node on the
+    // solid's face (a face on a node plane, whose distance rounds either
+    // way) is judged by the normals like a node outside. So is one less
+    // than half a cell inside a driven solid (deeper, its row is left out,
+    // transfer.cpp): on the side of the face nearest to it, it carries the
+    // solid's push on the sand that touches it (taken as across, plough3d's
+    // blade, one cell thick, pushed with 12.9 and 16.9 N against 13.2 and
+    // 17.9 N, and 13.5 and 18.8 N for a blade two cells thick). Not next
+    // to a still one: there the sand flowing along a thin wall packed
+    // against it under the grains' moves (largest phi 1.02 against 0.94;
+    // docs/method.md).
+    const double deep = thin_node_driven_[node] ? -0.5 * h : -1e-9 * h;
+    if (dn < deep ||
         (thin_node_normal_[node].dot(n) < 0.0 && (xa - x).norm() > d + std::max(dn, 0.0)))
       across |= 1u << a;
     else
