@@ -178,7 +178,7 @@ int check_command(const std::string& path, const std::vector<std::string>& overr
     } else {
       print_summary<3>(s);
     }
-    for (const SceneMessage& m : thin_solid_warnings(s))
+    for (const SceneMessage& m : thin_solid_messages(s))
       std::fprintf(stderr, "%s\n", m.line().c_str());
     std::printf("ok\n");
     return 0;

@@ -446,7 +446,7 @@ int start_run(const RunOptions& opt) {
     write_file_atomic((dir / "scene.toml").string(), set.scene_text);
     if (const std::string obj = format_obstacles_obj(scene); !obj.empty())
       write_file_atomic((dir / "obstacles.obj").string(), obj);
-    for (const SceneMessage& m : thin_solid_warnings(scene))  // notes unless --quiet
+    for (const SceneMessage& m : thin_solid_messages(scene))  // notes unless --quiet
       if (!opt.quiet || m.warning) std::fprintf(stderr, "%s\n", m.line().c_str());
     start_threads_and_signals(opt.threads);
     if (scene.dimension == 2) return Runner<2>(scene, set, Simulation<2>(scene)).run();

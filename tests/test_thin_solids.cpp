@@ -101,7 +101,7 @@ TEST(ThinSolids, ThicknessOfWallsPlatesAndMeshes) {
 TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
   const SceneConfig thin = parse_scene(funnel2d(0.003), "thin.toml");
   EXPECT_EQ(thin.solver.decompaction, Decompaction::Project);
-  const std::vector<SceneMessage> notes = thin_solid_warnings(thin);
+  const std::vector<SceneMessage> notes = thin_solid_messages(thin);
   ASSERT_EQ(notes.size(), 2u);
   EXPECT_FALSE(notes[0].warning);
   EXPECT_EQ(notes[0].line().rfind("note: thin.toml: obstacle[0] (polygon) is 3 mm thick", 0), 0u)
@@ -110,7 +110,7 @@ TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
   const SceneConfig moved =
       parse_scene(funnel2d(0.003, "[solver]\ndecompaction = \"move\"\n"), "moved.toml");
   EXPECT_EQ(moved.solver.decompaction, Decompaction::Move);
-  const std::vector<SceneMessage> warnings = thin_solid_warnings(moved);
+  const std::vector<SceneMessage> warnings = thin_solid_messages(moved);
   ASSERT_EQ(warnings.size(), 2u);
   EXPECT_TRUE(warnings[1].warning);
   EXPECT_EQ(warnings[1].line().rfind("warning: moved.toml: obstacle[1] (polygon)", 0), 0u)
@@ -118,7 +118,7 @@ TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
 
   const SceneConfig thick = parse_scene(funnel2d(0.02), "thick.toml");
   EXPECT_EQ(thick.solver.decompaction, Decompaction::Move);
-  EXPECT_TRUE(thin_solid_warnings(thick).empty());
+  EXPECT_TRUE(thin_solid_messages(thick).empty());
 
   const SceneConfig body = parse_scene(
       "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [0.3, 0.3]\nresolution = [30, 30]\n"
@@ -126,7 +126,7 @@ TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
       "[[sand]]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.3, 0.05]\n",
       "body.toml");
   EXPECT_EQ(body.solver.decompaction, Decompaction::Move);
-  EXPECT_TRUE(thin_solid_warnings(body).empty());
+  EXPECT_TRUE(thin_solid_messages(body).empty());
 }
 
 // What the tool prints: `check` and `run` the notes, `run --quiet` only

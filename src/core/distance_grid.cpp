@@ -297,6 +297,11 @@ bool DistanceGrid::local_distance(std::int32_t slot, const Point3& p, double off
   return true;
 }
 
+std::int32_t DistanceGrid::slot_of(const std::array<int, 3>& c) const {
+  return slot_[static_cast<std::size_t>((std::int64_t(c[2]) * (n_[1] - 1) + c[1]) * (n_[0] - 1) +
+                                        c[0])];
+}
+
 bool DistanceGrid::exact_at(const Point3& p) const {
   std::array<int, 3> c{};
   for (int a = 0; a < 3; ++a) {
@@ -304,8 +309,7 @@ bool DistanceGrid::exact_at(const Point3& p) const {
     if (!(u >= 0.0 && u <= n_[a] - 1)) return false;  // beyond the sampled box
     c[a] = std::min(static_cast<int>(u), n_[a] - 2);
   }
-  return slot_[static_cast<std::size_t>((std::int64_t(c[2]) * (n_[1] - 1) + c[1]) * (n_[0] - 1) +
-                                        c[0])] >= 0;
+  return slot_of(c) >= 0;
 }
 
 double DistanceGrid::signed_distance(const Point3& p, Point3* normal) const {
@@ -344,10 +348,7 @@ double DistanceGrid::signed_distance(const Point3& p, Point3* normal) const {
   } else {
     *normal = {0.0, 0.0, 1.0};
   }
-  const std::int32_t slot =
-      extra2 > 0.0 ? -1
-                   : slot_[static_cast<std::size_t>(
-                         (std::int64_t(c[2]) * (n_[1] - 1) + c[1]) * (n_[0] - 1) + c[0])];
+  const std::int32_t slot = extra2 > 0.0 ? -1 : slot_of(c);
   if (slot >= 0) {
     // A marked cell: the exact distance, by its own triangles if it can,
     // else by the whole mesh's tree; on the surface itself (d = 0) the

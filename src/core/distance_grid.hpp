@@ -81,6 +81,8 @@ class DistanceGrid {
     std::array<double, 3> angle;  // at each corner, radians (pseudo-normals' weights)
   };
   void mark_folds();
+  // The list of cell c (coordinates in cells), or -1 when unmarked.
+  std::int32_t slot_of(const std::array<int, 3>& c) const;
   bool local_distance(std::int32_t slot, const Point3& p, double off_centre, double* distance,
                       Point3* normal) const;
 

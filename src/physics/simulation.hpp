@@ -209,10 +209,11 @@ class Simulation {
   std::uint8_t corners_across(const Vec<D>& x, std::int64_t base) const;
   void find_own_sides();
   // The fixed solids thinner than kThinSolidCells (their indices in
-  // obstacles_), whether one moves or is taken away, and whether
-  // thin_solids_ (where they are) and the nodes' distances are set, for
-  // which time.
+  // obstacles_), whether each moves or is taken away (driven) and whether
+  // one does, and whether thin_solids_ (where they are) and the nodes'
+  // distances are set, for which time.
   std::vector<std::size_t> thin_index_;
+  std::vector<std::uint8_t> thin_driven_;
   bool thin_move_ = false;
   bool thin_placed_ = false;
   double thin_time_ = 0.0;

@@ -17,7 +17,9 @@ void Simulation<D>::find_thin_solids() {
     const ObstacleConfig& c = scene_.obstacles[k];
     if (!(c.thin > 0.0) || c.dynamic()) continue;
     thin_index_.push_back(k);
-    thin_move_ = thin_move_ || moves_into_sand(obstacles_[k]) || std::isfinite(c.until);
+    const bool driven = moves_into_sand(obstacles_[k]) || std::isfinite(c.until);
+    thin_driven_.push_back(driven ? 1 : 0);
+    thin_move_ = thin_move_ || driven;
   }
   if (thin_index_.empty()) return;
   thin_node_distance_.assign(grid_.node_count(), 0.0);
@@ -41,9 +43,7 @@ void Simulation<D>::place_thin_solids(double t) {
     for (int a = 0; a < D; ++a) x[a] = nc[a] * grid_.h();
     int which = 0;
     thin_node_distance_[i] = obstacle_distance(thin_solids_, x, &thin_node_normal_[i], &which);
-    const std::size_t k = thin_index_[static_cast<std::size_t>(which)];
-    thin_node_driven_[i] =
-        moves_into_sand(obstacles_[k]) || std::isfinite(scene_.obstacles[k].until) ? 1 : 0;
+    thin_node_driven_[i] = thin_driven_[static_cast<std::size_t>(which)];
   }
   thin_placed_ = true;
   thin_time_ = t;

@@ -65,7 +65,7 @@ struct SceneMessage {
 // cells (ObstacleConfig::thin, measured when the scene was read): which,
 // how thin, where, and what the decompaction does about it; a note under
 // the projection, a warning under another decompaction.
-std::vector<SceneMessage> thin_solid_warnings(const SceneConfig& s);
+std::vector<SceneMessage> thin_solid_messages(const SceneConfig& s);
 
 // The keys these blocks take, as known_scene_keys() names them.
 std::vector<std::string> obstacle_scene_keys();

@@ -143,7 +143,7 @@ bool thinnest_part(const ObstacleConfig& o, int dimension, double below, ThinPar
   return true;
 }
 
-std::vector<SceneMessage> thin_solid_warnings(const SceneConfig& s) {
+std::vector<SceneMessage> thin_solid_messages(const SceneConfig& s) {
   std::vector<SceneMessage> messages;
   const double h = s.cell_size(), below = kThinSolidCells * h;
   const bool projected = s.solver.decompaction == Decompaction::Project;
