@@ -42,7 +42,8 @@ TEST(Cli, RunWritesTheOutputs) {
     EXPECT_TRUE(s.residual <= 1e-5 || s.hit_cap) << "step " << s.step;
     EXPECT_GE(s.decompaction_work, 0.0) << "step " << s.step;  // a bound on an energy; NaN fails
   }
-  const ParticleFrame f0 = parse_vtp(read_file((dir / "frames/particles_00000.vtp").string()), "f0");
+  const ParticleFrame f0 =
+      parse_vtp(read_file((dir / "frames/particles_00000.vtp").string()), "f0");
   EXPECT_EQ(f0.time, 0.0);
   EXPECT_EQ(f0.dimension, 2);
   EXPECT_EQ(static_cast<long>(f0.count), rows.front().particles);
@@ -76,15 +77,17 @@ TEST(Cli, RunEndsByCountingTheCappedSteps) {
 
 TEST(Cli, BadSceneWritesNothing) {
   const fs::path dir = test::fresh_dir("cli_bad");
-  const fs::path bad = fs::temp_directory_path() / "sablier_cli_bad_scene.toml";
-  std::ofstream(bad) << read_file(scene_file("collapse2d.toml")) << "\n[solver]\ntolerence = 1e-3\n";
+  const fs::path bad = test::temp_path("cli_bad_scene", ".toml");
+  std::ofstream(bad) << read_file(scene_file("collapse2d.toml"))
+                     << "\n[solver]\ntolerence = 1e-3\n";
   Result r = sablier("run " + bad.string() + " --out " + dir.string());
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("solver.tolerence"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("did you mean \"tolerance\""), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(fs::exists(dir));
-  r = sablier("run " + scene_file("collapse2d.toml") + " --out " + dir.string() + " --set material.mu=nan");
+  r = sablier("run " + scene_file("collapse2d.toml") + " --out " + dir.string() +
+              " --set material.mu=nan");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("material.mu"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir));
@@ -94,10 +97,14 @@ TEST(Cli, RefusesToMixRuns) {
   const fs::path dir = test::fresh_dir("cli_mix");
   const std::string kSmall = " --set time.frames=2 --quiet";
   ASSERT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall).code, 0);
-  const Result again = sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall);
+  const Result again =
+      sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall);
   EXPECT_NE(again.code, 0);
   EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
-  EXPECT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall + " --overwrite").code, 0);
+  EXPECT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall +
+                    " --overwrite")
+                .code,
+            0);
 }
 
 // (solver.zone_rows = 100: the sand is swept in several zones, so the solve

@@ -33,10 +33,30 @@ struct OneThread : testing::Environment {
   void SetUp() override { omp_set_num_threads(1); }
 };
 
-// A temp path of this process: <tmp>/sablier_<name>_<pid>.
-inline std::filesystem::path temp_path(const std::string& name) {
-  return std::filesystem::temp_directory_path() /
-         ("sablier_" + name + "_" + std::to_string(::getpid()));
+// The temp paths this process has named, removed when it exits: the
+// folders of runs and the files that tests write would otherwise stay
+// behind, about 13 MB for each pass of the suite.
+inline std::vector<std::filesystem::path>& temp_paths() {
+  struct Registry {
+    std::vector<std::filesystem::path> paths;
+    ~Registry() {
+      std::error_code ignored;  // a path never made, or already gone
+      for (const std::filesystem::path& p : paths) std::filesystem::remove_all(p, ignored);
+    }
+  };
+  static Registry registry;
+  return registry.paths;
+}
+
+// A temp path of this process, <tmp>/sablier_<name>_<pid><extension>,
+// removed when the process exits.
+inline std::filesystem::path temp_path(const std::string& name, const std::string& extension = "") {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() /
+      ("sablier_" + name + "_" + std::to_string(::getpid()) + extension);
+  std::vector<std::filesystem::path>& known = temp_paths();
+  if (std::find(known.begin(), known.end(), path) == known.end()) known.push_back(path);
+  return path;
 }
 
 // temp_path(name), emptied: removed, not created (a run creates it).
