@@ -9,7 +9,7 @@ Each figure runs the shipped scenes with the overrides of the matching test
 runs' stats.csv and last particle frame, and writes a PNG into
 docs/images/validation/. The runs stay in --work (default
 /tmp/sablier_validation); --reuse skips the runs that finished there. All
-figures take about 7 minutes on 2 cores; each prints what it measured.
+figures take about 8 minutes on 2 cores; each prints what it measured.
 """
 import argparse
 import csv
@@ -421,9 +421,58 @@ def axisym(args):
     save_runout(args, fig, axes, "axisym_runout")
 
 
+def plough(args):
+    """The plough's thrust against the grains per cell and the step (docs/method.md)."""
+    rankine = 3.0 * RHO * PHI_MAX * G * 0.1 ** 2 / 2  # K_p = 3 for sin(phi) = mu = 0.5
+
+    def thrust(out, t0=0.05, t1=0.3):
+        """The blade's mean force over (t0, t1], each step weighted by its length."""
+        o = columns(os.path.join(out, "obstacles.csv"))
+        t = o["time"]
+        dt = np.diff(np.concatenate([[0.0], t]))
+        w = (t > t0 + 1e-12) & (t <= t1 + 1e-12)
+        return float(np.sum(-o["fx"][w] * dt[w]) / np.sum(dt[w]))
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for k, n in enumerate([3, 5, 8]):
+        out = run(args, f"plough_1cm_n{n}_long", "plough2d",
+                  [f"sand.0.particles_per_cell={n}", "time.frames=15"])
+        o = columns(os.path.join(out, "obstacles.csv"))
+        axes[0].plot(o["time"], -o["fx"], color=f"C{k}", lw=1, label=f"{n} grains per cell and axis")
+    axes[0].axhline(rankine, color="k", ls="--", lw=1, label="Rankine, level 10 cm bed")
+    axes[0].set_xlabel("t (s)"), axes[0].set_ylabel("force on the blade (N/m)")
+    axes[0].set_title("plough2d at 1 cm cells, default step: force per step", fontsize=10)
+    axes[0].legend(fontsize=8)
+    counts = [3, 4, 5, 6, 8]
+    for cells, res, seeds, marker, colour in [(1.0, "[100,30]", (1, 2, 3), "o", "C0"),
+                                             (0.5, "[200,60]", (1,), "s", "C3")]:
+        for cfl, fill in [(1.0, True), (0.5, False)]:
+            xs, ys = [], []
+            for n in counts:
+                if cells == 0.5 and n > 5 or cfl == 0.5 and n not in (3, 5):
+                    continue
+                for seed in seeds if cfl == 1.0 else (1,):
+                    name = f"plough_{cells:g}cm_n{n}_cfl{cfl:g}_s{seed}"
+                    out = run(args, name, "plough2d",
+                              [f"grid.resolution={res}", f"sand.0.particles_per_cell={n}",
+                               f"time.cfl={cfl}", f"seed={seed}", "time.frames=9"])
+                    f = thrust(out)
+                    xs.append(n), ys.append(f)
+                    print(f"  {cells:g} cm, cfl {cfl:g}, {n} per axis, seed {seed}: {f:.1f} N/m")
+            axes[1].plot(xs, ys, marker, color=colour, mfc=colour if fill else "none",
+                         label=f"{cells:g} cm cells, cfl {cfl:g}")
+    axes[1].axhline(rankine, color="k", ls="--", lw=1, label=f"Rankine {rankine:.0f} N/m")
+    axes[1].set_xlabel("grains per cell and axis"), axes[1].set_ylabel("mean force, 0.05-0.3 s (N/m)")
+    axes[1].set_title("mean thrust against the particle quadrature and the step", fontsize=10)
+    axes[1].legend(fontsize=8)
+    fig.tight_layout()
+    save(args, fig, "plough")
+
+
 FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "silo": silo,
            "refinement": refinement, "pile": pile,
-           "tolerance": tolerance, "axisym": axisym, "frictionless": frictionless}
+           "tolerance": tolerance, "axisym": axisym, "frictionless": frictionless,
+           "plough": plough}
 
 
 def main():
