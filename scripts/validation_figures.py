@@ -443,24 +443,23 @@ def plough(args):
     axes[0].set_xlabel("t (s)"), axes[0].set_ylabel("force on the blade (N/m)")
     axes[0].set_title("plough2d at 1 cm cells, default step: force per step", fontsize=10)
     axes[0].legend(fontsize=8)
-    counts = [3, 4, 5, 6, 8]
-    for cells, res, seeds, marker, colour in [(1.0, "[100,30]", (1, 2, 3), "o", "C0"),
-                                             (0.5, "[200,60]", (1,), "s", "C3")]:
-        for cfl, fill in [(1.0, True), (0.5, False)]:
-            xs, ys = [], []
-            for n in counts:
-                if cells == 0.5 and n > 5 or cfl == 0.5 and n not in (3, 5):
-                    continue
-                for seed in seeds if cfl == 1.0 else (1,):
-                    name = f"plough_{cells:g}cm_n{n}_cfl{cfl:g}_s{seed}"
-                    out = run(args, name, "plough2d",
-                              [f"grid.resolution={res}", f"sand.0.particles_per_cell={n}",
-                               f"time.cfl={cfl}", f"seed={seed}", "time.frames=9"])
-                    f = thrust(out)
-                    xs.append(n), ys.append(f)
-                    print(f"  {cells:g} cm, cfl {cfl:g}, {n} per axis, seed {seed}: {f:.1f} N/m")
-            axes[1].plot(xs, ys, marker, color=colour, mfc=colour if fill else "none",
-                         label=f"{cells:g} cm cells, cfl {cfl:g}")
+    # (cells in cm, resolution, cfl, grains per cell and axis, seeds, marker, colour)
+    cases = [(1.0, "[100,30]", 1.0, (3, 4, 5, 6, 8), (1, 2, 3), "o", "C0"),
+             (1.0, "[100,30]", 0.5, (3, 5), (1,), "o", "C0"),
+             (0.5, "[200,60]", 1.0, (3, 4, 5), (1,), "s", "C3"),
+             (0.5, "[200,60]", 0.5, (3, 5), (1,), "s", "C3")]
+    for cells, res, cfl, counts, seeds, marker, colour in cases:
+        xs, ys = [], []
+        for n in counts:
+            for seed in seeds:
+                out = run(args, f"plough_{cells:g}cm_n{n}_cfl{cfl:g}_s{seed}", "plough2d",
+                          [f"grid.resolution={res}", f"sand.0.particles_per_cell={n}",
+                           f"time.cfl={cfl}", f"seed={seed}", "time.frames=9"])
+                f = thrust(out)
+                xs.append(n), ys.append(f)
+                print(f"  {cells:g} cm, cfl {cfl:g}, {n} per axis, seed {seed}: {f:.1f} N/m")
+        axes[1].plot(xs, ys, marker, color=colour, mfc=colour if cfl == 1.0 else "none",
+                     label=f"{cells:g} cm cells, cfl {cfl:g}")
     axes[1].axhline(rankine, color="k", ls="--", lw=1, label=f"Rankine {rankine:.0f} N/m")
     axes[1].set_xlabel("grains per cell and axis"), axes[1].set_ylabel("mean force, 0.05-0.3 s (N/m)")
     axes[1].set_title("mean thrust against the particle quadrature and the step", fontsize=10)
