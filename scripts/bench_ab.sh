@@ -10,12 +10,13 @@
 # (docs/benchmarks.md), so timing one build and then the other compares the
 # guest's states, not the builds. This runs the two alternately REPS times
 # (default 5) with OMP_NUM_THREADS=THREADS (default 2) and prints, per build,
-# the lowest and the median of the benchmark's ns_per_row_sweep counter and
-# every run's figure. FILTER must select one benchmark.
+# the lowest and the median (the lower middle one for an even count) of the
+# benchmark's ns_per_row_sweep counter and every run's figure, sorted.
+# FILTER must select one benchmark.
 set -euo pipefail
 
 if [[ $# -lt 3 ]]; then
-  sed -n '2,14p' "$0" >&2
+  sed -n '2,15p' "$0" >&2
   exit 2
 fi
 old=$1
@@ -38,9 +39,13 @@ fi
 figure() {
   local out value
   out=$(OMP_NUM_THREADS=$threads "$1" --benchmark_filter="$filter" 2>&1)
-  value=$(grep -o 'ns_per_row_sweep=[0-9.]*k\?' <<<"$out" | head -1 | cut -d= -f2)
+  value=$(grep -o 'ns_per_row_sweep=[0-9.]*k\?' <<<"$out" | cut -d= -f2 || true)
   if [[ -z $value ]]; then
     echo "bench_ab.sh: no ns_per_row_sweep from $1 for '$filter'" >&2
+    exit 1
+  fi
+  if [[ $value == *$'\n'* ]]; then
+    echo "bench_ab.sh: '$filter' selects more than one benchmark of $1" >&2
     exit 1
   fi
   if [[ $value == *k ]]; then
