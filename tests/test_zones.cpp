@@ -53,7 +53,7 @@ void check_layout(const std::array<int, D>& cells, double fill, int zone_rows, u
   const int n = static_cast<int>(coords.size());
   const ZoneLayout L = zone_layout<D>(coords, key, zone_rows);
   const int Z = L.zones;
-  ASSERT_EQ(static_cast<int>(L.run_start.size()), (2 * Z - 1) * NC + 1);
+  ASSERT_EQ(static_cast<int>(L.run_start.size()), sand_units(Z) * NC + 1);
   ASSERT_EQ(L.run_start.back(), n);
   // A permutation of the rows.
   std::vector<int> sorted = L.order;
@@ -112,7 +112,11 @@ TEST(Zones, LayoutKeepsRowsThatShareANodeInOrder3D) {
   check_layout<3>({12, 30, 8}, 0.8, 100, 6);  // cut along y, the longest of y and z
 }
 
-// The zones hold about as many rows each, and as many as asked for.
+// The zones hold about as many rows each, and as many as asked for: each
+// zone with the separator after it (a thread's share of a sweep) holds the
+// rows divided by the zones, and each separator as many as the others, to
+// within a line of rows along x (the cuts fall between lines, here single
+// nodes, not only between layers).
 TEST(Zones, ZonesShareTheRowsEvenly) {
   std::mt19937 rng(7);
   std::vector<std::array<int, 2>> coords;
@@ -122,12 +126,32 @@ TEST(Zones, ZonesShareTheRowsEvenly) {
   ASSERT_EQ(L.zones, 8);
   EXPECT_EQ(L.axis, 1);
   const int NC = 9;
+  const auto unit_rows = [&](int u) { return L.run_start[(u + 1) * NC] - L.run_start[u * NC]; };
   for (int z = 0; z < L.zones; ++z) {
-    const int rows = L.run_start[(z + 1) * NC] - L.run_start[z * NC];
-    // 64 layers: 7 separators of 2 layers, 50 layers of zones, 6 or 7 each.
-    EXPECT_GE(rows, 6 * 200) << "zone " << z;
-    EXPECT_LE(rows, 7 * 200) << "zone " << z;
+    EXPECT_NEAR(unit_rows(z) + unit_rows(L.zones + z), 12800 / 8, 1) << "zone " << z;
+    // Two layers and two nodes between zones; the trailing one as many.
+    EXPECT_EQ(unit_rows(L.zones + z), 402) << "separator " << z;
   }
+}
+
+// A 3D bed of 51 x 11 x 15 nodes (the benchmark's Bed3DPaperSize): two
+// zones cut along z, 15 layers of 11 lines of 51 rows. Whole layers gave
+// the threads 3,927 + 561 and 3,366 + 561 rows (the separator between them
+// shared); cut between lines, each thread's zone and separator differ
+// from the other's by at most a line.
+TEST(Zones, BedSplitsToALine3D) {
+  std::mt19937 rng(8);
+  std::vector<std::array<int, 3>> coords;
+  std::vector<std::int64_t> key;
+  random_rows<3>(rng, {51, 11, 15}, 1.0, coords, key);
+  const ZoneLayout L = zone_layout<3>(coords, key, 500);
+  ASSERT_EQ(L.zones, 2);
+  EXPECT_EQ(L.axis, 2);
+  const int NC = 27;
+  const auto unit_rows = [&](int u) { return L.run_start[(u + 1) * NC] - L.run_start[u * NC]; };
+  EXPECT_EQ(unit_rows(2), 51 * (2 * 11 + 2));  // between the zones
+  EXPECT_EQ(unit_rows(3), unit_rows(2));       // the trailing one
+  EXPECT_LE(std::abs(unit_rows(0) - unit_rows(1)), 51);
 }
 
 }  // namespace

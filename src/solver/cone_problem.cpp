@@ -2,24 +2,23 @@
 
 #include <omp.h>
 
-#if defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-#endif
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
 #include "solver/anderson.hpp"
 #include "solver/slide_batch.hpp"
+#include "solver/stencil.hpp"
 #include "solver/sweep_order.hpp"
 #include "solver/team.hpp"
 
 namespace sablier {
 
 using solver_detail::AndersonMixer;
+using solver_detail::apply_B;
 using solver_detail::deterministic_sums;
 using solver_detail::free_velocities;
+using solver_detail::scatter_stress;
 using solver_detail::SumBlocks;
 using solver_detail::SweepOrder;
 using solver_detail::team_size;
@@ -39,81 +38,6 @@ void ConeProblem<D>::resize_rows(int n) {
 }
 
 namespace {
-
-#if defined(__AVX2__) && defined(__FMA__)
-// 3-vectors in the first three lanes of an AVX register (the fourth zero):
-// Eigen leaves 3-vector arithmetic scalar. Loaded and stored as two and one
-// doubles, so that nothing past the vector is read or written.
-inline __m256d load3(const double* x) {
-  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(x)), _mm_load_sd(x + 2), 1);
-}
-inline void store3(double* x, __m256d v) {
-  _mm_storeu_pd(x, _mm256_castpd256_pd128(v));
-  _mm_store_sd(x + 2, _mm256_extractf128_pd(v, 1));
-}
-#define SABLIER_LANES3 1
-#endif
-
-// (B u)_j: the symmetric part of sum_i u_i g_ji^T, in basis coordinates.
-template <int D>
-inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
-  const Vec<D>* u = p.velocity.data() + p.node[j];
-  const auto& g = p.coupling[j];
-  Mat<D> L = Mat<D>::Zero();
-#ifdef SABLIER_LANES3
-  if constexpr (D == 3) {
-    // Column b of L accumulates u_s g_s[b] over the stencil, in order: the
-    // same fused products and sums as the loop below, four lanes at a time
-    // (bit-identical results; 2-5% of a 3D sweep, docs/benchmarks.md).
-    const double* gs = g.data();
-    __m256d c0 = _mm256_setzero_pd(), c1 = c0, c2 = c0;
-    for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 3) {
-      const __m256d v = load3(u[p.stencil[s]].data());
-      c0 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs), c0);
-      c1 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs + 1), c1);
-      c2 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs + 2), c2);
-    }
-    store3(L.col(0).data(), c0);
-    store3(L.col(1).data(), c1);
-    store3(L.col(2).data(), c2);
-    return to_sym<D>(L);
-  }
-#endif
-  for (int s = 0; s < ConeProblem<D>::NS; ++s)
-    L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
-  return to_sym<D>(L);
-}
-
-// u_i += M_i^{-1} Lambda g_ji over row j's stencil.
-template <int D>
-inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
-  const Mat<D> T = from_sym<D>(dlambda);
-  Vec<D>* u = p.velocity.data() + p.node[j];
-  const Vec<D>* im = p.inv_mass.data() + p.node[j];
-  const auto& g = p.coupling[j];
-#ifdef SABLIER_LANES3
-  if constexpr (D == 3) {
-    // T g_s = T_0 g_s[0] + T_1 g_s[1] + T_2 g_s[2] over T's columns, four
-    // lanes at a time (Eigen leaves it scalar; 5-10% of a 3D sweep,
-    // docs/benchmarks.md, fifteenth session).
-    const __m256d t0 = load3(T.col(0).data()), t1 = load3(T.col(1).data()),
-                  t2 = load3(T.col(2).data());
-    const double* gs = g.data();
-    for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 3) {
-      const std::int64_t o = p.stencil[s];
-      __m256d f = _mm256_mul_pd(t0, _mm256_broadcast_sd(gs));
-      f = _mm256_fmadd_pd(t1, _mm256_broadcast_sd(gs + 1), f);
-      f = _mm256_fmadd_pd(t2, _mm256_broadcast_sd(gs + 2), f);
-      store3(u[o].data(), _mm256_fmadd_pd(load3(im[o].data()), f, load3(u[o].data())));
-    }
-    return;
-  }
-#endif
-  for (int s = 0; s < ConeProblem<D>::NS; ++s) {
-    const std::int64_t o = p.stencil[s];
-    u[o] += im[o].cwiseProduct(T * g.col(s));
-  }
-}
 
 // Velocity of a body's point at `arm` from its centre: V + omega x arm.
 template <int D>

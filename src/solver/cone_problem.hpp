@@ -54,8 +54,8 @@ struct ConeProblem {
   // Stress rows, in runs of rows with pairwise disjoint stencils (rows of
   // one colour: node coordinates mod 3), rows [colour_start[c],
   // colour_start[c+1]). The sand's rows come first, laid out in zones
-  // (solver/zones.hpp): 2 zones - 1 units (the zones, then the separators
-  // between them) of 3^d runs each, one per colour, which a sweep updates
+  // (solver/zones.hpp): 2 x zones units (the zones, then the separator
+  // after each) of 3^d runs each, one per colour, which a sweep updates
   // one unit per thread, each in its own order; the contact rows' colours
   // follow, each shared by the team. With zones = 1 the sand's rows are one
   // unit: 3^d colours swept in order.

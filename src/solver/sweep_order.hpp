@@ -13,6 +13,7 @@
 #include "solver/anderson.hpp"
 #include "solver/cone_problem.hpp"
 #include "solver/team.hpp"
+#include "solver/zones.hpp"
 
 namespace sablier {
 namespace solver_detail {
@@ -31,31 +32,22 @@ int team_size(const ConeProblem<D>& p) {
 // A thread's part of the sweep order (solver/zones.hpp): the ranges of rows
 // it updates, in order, and where it waits for the team. Its zones, then
 // the separators between them; then, after the team's barrier, the
-// separators between its zones and the next thread's, either one thread
-// each or, when they hold many rows, shared colour by colour (a barrier per
-// colour, which costs less than the other threads waiting); then its share
-// of each colour of the contact rows, and the bodies' rows on the first
-// thread. Every thread count updates rows that share a velocity in the same
-// order, so results do not depend on it.
+// separator after its last zone (between its zones and the next thread's,
+// or the trailing one for the last thread); then its share of each colour
+// of the contact rows, and the bodies' rows on the first thread. Every
+// thread count updates rows that share a velocity in the same order, so
+// results do not depend on it. (Before, the separators between threads
+// were shared colour by colour, a barrier per colour, and the last thread
+// had none: on the 3D bed on two threads they took a fifth of the sweep.)
 template <int D>
 struct SweepOrder {
   static constexpr int NC = ConeProblem<D>::NS;  // runs (colours) per unit
-  // Fewer rows than this in the separators between threads: one thread each.
-  static constexpr int kSharedSeparatorRows = 200;
   const ConeProblem<D>& p;
   int size;   // the team
   int zones;  // Z
-  bool share_separators = false;
 
   SweepOrder(const ConeProblem<D>& problem, int team)
-      : p(problem), size(team), zones(std::max(problem.zones, 1)) {
-    int rows = 0;
-    for (int k = 0; k + 1 < size; ++k) {
-      const int u = zones + zones_of(k).second - 1;
-      rows += p.colour_start[unit_start(u + 1)] - p.colour_start[unit_start(u)];
-    }
-    share_separators = rows >= kSharedSeparatorRows;
-  }
+      : p(problem), size(team), zones(std::max(problem.zones, 1)) {}
   Team as(int rank) const { return Team{rank, size, nullptr}; }
   std::pair<int, int> zones_of(int rank) const { return as(rank).split(0, zones); }
   static int unit_start(int u) { return u * NC; }
@@ -70,47 +62,25 @@ struct SweepOrder {
   template <class F, class G, class W>
   void walk(int rank, const F& f, const G& done, const W& wait) const {
     const std::vector<int>& cs = p.colour_start;
-    // Colour c of the n units unit(0) ... unit(n - 1) (pairwise
-    // independent), as one range split by count among the team if `shared`,
-    // else all of it.
-    const auto colour = [&](int c, int n, const auto& unit, bool shared) {
-      int total = 0;
-      for (int i = 0; i < n; ++i)
-        total += cs[unit_start(unit(i)) + c + 1] - cs[unit_start(unit(i)) + c];
-      const auto [a, b] = shared ? as(rank).split(0, total) : std::pair<int, int>(0, total);
-      for (int i = 0, off = 0; i < n; ++i) {
-        const int r = unit_start(unit(i)) + c, len = cs[r + 1] - cs[r];
-        const int lo = std::max(a, off), hi = std::min(b, off + len);
-        if (lo < hi) f(cs[r] + lo - off, cs[r] + hi - off);
-        off += len;
+    // Colour c of the units first ... first + n - 1 (pairwise independent).
+    const auto colour = [&](int c, int first, int n) {
+      for (int u = first; u < first + n; ++u) {
+        const int r = unit_start(u) + c;
+        if (cs[r] < cs[r + 1]) f(cs[r], cs[r + 1]);
       }
       done();
     };
     const auto [z0, z1] = zones_of(rank);
-    for (int c = 0; c < NC; ++c)
-      colour(
-          c, z1 - z0, [&](int i) { return z0 + i; }, false);
-    for (int c = 0; c < NC; ++c)
-      colour(
-          c, z1 - z0 - 1, [&](int i) { return zones + z0 + i; }, false);
+    for (int c = 0; c < NC; ++c) colour(c, z0, z1 - z0);
+    for (int c = 0; c < NC; ++c) colour(c, zones + z0, z1 - z0 - 1);
     wait();
-    // The separators between threads: after each thread's last zone but the last.
-    const auto boundary = [&](int k) { return zones + zones_of(k).second - 1; };
-    if (size > 1 && !share_separators) {
-      if (rank + 1 < size)
-        for (int c = 0; c < NC; ++c)
-          colour(
-              c, 1, [&](int) { return boundary(rank); }, false);
+    if (zones > 1) {
+      for (int c = 0; c < NC; ++c) colour(c, zones + z1 - 1, 1);
       wait();
-    } else if (size > 1) {
-      for (int c = 0; c < NC; ++c) {
-        colour(c, size - 1, boundary, true);
-        wait();
-      }
     }
     // The contact rows' colours; the bodies' rows on the first thread.
     const int ncol = static_cast<int>(cs.size()) - 1;
-    for (int c = unit_start(2 * zones - 1); c < ncol; ++c) {
+    for (int c = unit_start(sand_units(zones)); c < ncol; ++c) {
       const int begin = cs[c], end = cs[c + 1];
       const int split = std::clamp(p.first_body_row, begin, end);
       const auto [c0, c1] = as(rank).split(begin, split);
@@ -136,7 +106,7 @@ struct SweepOrder {
 
 // The free velocity nodes (some component with inv_mass > 0) in the order of
 // the threads that write them, and their blocks for the sums (anderson.hpp):
-// the nodes of the rows of zone 0, separator 0, zone 1, ... zone Z - 1, each
+// the nodes of the rows of zone 0, separator 0, zone 1, ... separator Z - 1, each
 // unit's by node index and in its own blocks (segment_block[s]: the first
 // block of the s-th, SweepOrder::first_segment), then any other (the bodies' unknowns). A thread's
 // zones and the separators after them are then consecutive, and so are the
@@ -151,8 +121,9 @@ void free_velocities(const ConeProblem<D>& p, std::vector<std::int64_t>& free, S
   const int zones = std::max(p.zones, 1);
   std::vector<char> seen(nv, 0);
   free.clear();
-  segment_block.assign(2 * zones, 0);
-  for (int s = 0; s < 2 * zones - 1; ++s) {
+  const int units = sand_units(zones);
+  segment_block.assign(units + 1, 0);
+  for (int s = 0; s < units; ++s) {
     const int u = s % 2 == 0 ? s / 2 : zones + s / 2;
     const std::size_t from = free.size();
     for (int j = p.colour_start[u * NC]; j < p.colour_start[(u + 1) * NC]; ++j) {
@@ -165,7 +136,7 @@ void free_velocities(const ConeProblem<D>& p, std::vector<std::int64_t>& free, S
     segment_block[s] = blocks.count();
     blocks.add_segment(static_cast<std::int64_t>(free.size()));
   }
-  segment_block[2 * zones - 1] = blocks.count();
+  segment_block[units] = blocks.count();
   for (std::int64_t i = 0; i < nv; ++i)
     if (!seen[i] && is_free(i)) free.push_back(i);
   blocks.add_segment(static_cast<std::int64_t>(free.size()));

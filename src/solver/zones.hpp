@@ -4,15 +4,20 @@
 // A row at node coordinates c touches the velocity nodes c - 1 ... c + 1 on
 // every axis, so two rows share a velocity node only if their coordinates
 // differ by at most 2 on every axis. The rows are cut along one axis into
-// Z zones separated by separators two node layers thick: rows of different
-// zones are then at least 3 layers apart, and so are rows of different
-// separators (each zone between two separators is at least 2 layers
-// thick; we keep them at least kMinZoneLayers). A sweep updates every zone, each on one thread and
-// in its own colour order (the rows of one colour of one zone are independent, which the batched
-// slide solves need), then every separator likewise. Only rows of a zone and of the separators on
-// either side of it touch the same velocities, and the separators always come after the zones:
-// every thread count updates rows that share a velocity in the same order, so the result does not
-// depend on it, and threads need to wait for each other only before the separators between them.
+// Z zones, each followed by a separator: those between zones are two node
+// layers and two lines thick (the cuts fall between lines of rows along x,
+// zone_layout), so rows of different zones differ by 3 or more on one axis,
+// and so do rows of different separators (each zone is at least
+// kMinZoneLayers layers thick); the last one takes the rows after the last
+// zone. A sweep updates every zone, each on one thread and in its own
+// colour order (the rows of one colour of one zone are independent, which
+// the batched slide solves need), then every separator likewise. Only rows
+// of a zone and of the separators on either side of it touch the same
+// velocities, and the separators always come after the zones: every thread
+// count updates rows that share a velocity in the same order, so the result
+// does not depend on it. Each thread's zones and separators hold about as
+// many rows as the others', so the threads wait for each other little, and
+// only twice a sweep (before the separators, and after them).
 #pragma once
 
 #include <algorithm>
@@ -30,43 +35,65 @@ struct ZoneLayout {
   // colour of ConeProblem: node coordinates mod 3). Every unit (a zone or a
   // separator) has its 3^d runs, empty or not: unit u is runs
   // [u 3^d, (u + 1) 3^d). Units [0, zones) are the zones, along `axis` in
-  // increasing coordinate, and [zones, 2 zones - 1) the separators, the
-  // separator zones + s lying between zones s and s + 1.
+  // increasing coordinate, and [zones, 2 zones) the separators, the
+  // separator zones + s lying between zones s and s + 1, and the last one
+  // (zones + zones - 1) after the last zone; with one zone, that zone is the
+  // only unit (sand_units).
   std::vector<int> order;
   std::vector<int> run_start;
   int zones = 1;
   int axis = 0;
 };
 
+// Units of the sand's rows: the zones and their separators, or the one zone.
+inline int sand_units(int zones) { return zones > 1 ? 2 * zones : 1; }
+
 namespace zone_detail {
 
 // The thinnest zone, in node layers. Two would keep separators apart, but
-// the separators' rows (two layers each) would then be a large share of
-// the rows, and whole layers of 3D rows are too coarse to balance thin
-// zones (3D collapse, 17 layers in 4 zones of 2-4 layers: one thread got
-// 14% more rows than the other).
+// the separators' rows would then be a large share of the rows (3D
+// collapse, 17 layers: 4 zones of 2-4 layers).
 constexpr int kMinZoneLayers = 4;
 
-// First layer of each of the z - 1 separators over the layers' row counts
-// `count`, so that each zone with half of each separator beside it holds
-// about as many rows as the layers allow; false when the zones between them
-// would be thinner than kMinZoneLayers.
-inline bool place_separators(const std::vector<int>& count, int z, std::vector<int>& cut) {
-  const int layers = static_cast<int>(count.size());
-  std::int64_t total = 0;
-  for (int c : count) total += c;
-  cut.assign(z - 1, 0);
-  std::int64_t before = 0;  // rows in layers [0, c)
-  int c = 0;
-  for (int s = 0; s < z - 1; ++s) {
-    const std::int64_t target = total * (s + 1) / z;
-    // The separator's middle (after its first layer c) at the target.
-    while (c < layers && before + count[c] < target) before += count[c++];
-    const int lowest = s == 0 ? kMinZoneLayers : cut[s - 1] + 2 + kMinZoneLayers;
-    for (; c < lowest && c < layers; ++c) before += count[c];
-    cut[s] = c;
+// The separators' lines over the lines' row counts `count`: separator s is
+// lines [first[s], last[s]), `width` lines for s < z - 1 (between zones s
+// and s + 1), the trailing one (s = z - 1) the lines after the last zone.
+// Each zone with the separator after it holds about n / z rows and each
+// separator about as many rows as the others (z = 1: no rows), so that the
+// threads' zones and their separators balance as the lines allow. A zone
+// holds at least `min_zone` lines; false when z zones do not fit.
+inline bool place_separators(const std::vector<int>& count, int z, int width, int min_zone,
+                             std::vector<int>& first, std::vector<int>& last) {
+  const int lines = static_cast<int>(count.size());
+  std::vector<std::int64_t> before(lines + 1, 0);  // rows in lines [0, k)
+  for (int k = 0; k < lines; ++k) before[k + 1] = before[k] + count[k];
+  const std::int64_t n = before[lines];
+  first.assign(z, lines);
+  last.assign(z, lines);
+  std::int64_t separated = 0;  // rows of the separators between zones
+  for (int s = 0; s + 1 < z; ++s) {
+    // The separator ending nearest (s + 1) n / z: rows before its end grow
+    // with its first line c.
+    const std::int64_t target = n * (s + 1) / z;
+    const int lowest = s == 0 ? min_zone : last[s - 1] + min_zone;
+    if (lowest + width > lines) return false;
+    int c = lowest;
+    while (c + width < lines && before[c + width + 1] <= target) ++c;
+    if (c + width < lines && before[c + width + 1] - target < target - before[c + width]) ++c;
+    first[s] = c;
+    last[s] = c + width;
+    separated += before[last[s]] - before[first[s]];
   }
-  return z == 1 || cut[z - 2] + 2 + kMinZoneLayers <= layers;
+  if (z == 1) return true;
+  // The trailing separator: the lines after the last zone holding the mean
+  // of the others' rows.
+  const std::int64_t mean = separated / (z - 1);
+  const int lowest = last[z - 2] + min_zone;
+  if (lowest > lines) return false;
+  int c = lines;
+  while (c > lowest && n - before[c - 1] <= mean) --c;
+  first[z - 1] = c;
+  return true;
 }
 
 }  // namespace zone_detail
@@ -97,29 +124,44 @@ ZoneLayout zone_layout(const std::vector<std::array<int, D>>& coords,
   int axis = 1;
   for (int a = 2; a < D; ++a)
     if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
-  std::vector<int> count(hi[axis] - lo[axis] + 1, 0);
-  for (int j = 0; j < n; ++j) ++count[coords[j][axis] - lo[axis]];
+  // The cuts fall between lines of rows along x, not only between layers:
+  // a row's line is its coordinate along `axis` times the lines per layer
+  // plus its coordinate along `across` (the other axis that is not x in 3D;
+  // x itself in 2D), so that zones balance to a line (whole layers left
+  // the bed's two zones 3,927 and 3,366 rows). Two rows share a velocity
+  // node only if both coordinates differ by at most 2, hence by less than
+  // 2 per_layer + 3 lines; a separator of 2 per_layer + 2 lines keeps
+  // zones at least that far apart.
+  const int across = D == 3 ? 3 - axis : 0;
+  const int per_layer = hi[across] - lo[across] + 1;
+  const auto line_of = [&](int j) {
+    return (coords[j][axis] - lo[axis]) * per_layer + (coords[j][across] - lo[across]);
+  };
+  const int width = 2 * per_layer + 2;
+  const int min_zone = zone_detail::kMinZoneLayers * per_layer;
+  std::vector<int> count((hi[axis] - lo[axis] + 1) * per_layer, 0);
+  for (int j = 0; j < n; ++j) ++count[line_of(j)];
   int z = 1;
   while (zone_rows > 0 && static_cast<std::int64_t>(2) * z * zone_rows <= n) z *= 2;
-  std::vector<int> cut;
-  while (!zone_detail::place_separators(count, z, cut)) z /= 2;
+  std::vector<int> first, last;
+  while (!zone_detail::place_separators(count, z, width, min_zone, first, last)) z /= 2;
   layout.zones = z;
   layout.axis = axis;
 
   // Each row's unit and colour, then a counting sort by (unit, colour) and
   // the key within each run.
-  const int units = 2 * z - 1;
+  const int units = sand_units(z);
   std::vector<int> run(n);
   std::vector<int> size(units * NC + 1, 0);
   for (int j = 0; j < n; ++j) {
-    const int c = coords[j][axis] - lo[axis];
-    int unit = z - 1;
-    for (int s = 0; s < z - 1; ++s) {
-      if (c < cut[s]) {
+    const int c = line_of(j);
+    int unit = units - 1;
+    for (int s = 0; s < z && z > 1; ++s) {
+      if (c < first[s]) {
         unit = s;
         break;
       }
-      if (c <= cut[s] + 1) {
+      if (c < last[s]) {
         unit = z + s;
         break;
       }
