@@ -129,9 +129,9 @@ ZoneLayout zone_layout(const std::vector<std::array<int, D>>& coords,
   // plus its coordinate along `across` (the other axis that is not x in 3D;
   // x itself in 2D), so that zones balance to a line (whole layers left
   // the bed's two zones 3,927 and 3,366 rows). Two rows share a velocity
-  // node only if both coordinates differ by at most 2, hence by less than
-  // 2 per_layer + 3 lines; a separator of 2 per_layer + 2 lines keeps
-  // zones at least that far apart.
+  // node only if both coordinates differ by at most 2, so their lines
+  // differ by at most 2 per_layer + 2; a separator of 2 per_layer + 2 lines
+  // puts the lines of two zones' rows at least 2 per_layer + 3 apart.
   const int across = D == 3 ? 3 - axis : 0;
   const int per_layer = hi[across] - lo[across] + 1;
   const auto line_of = [&](int j) {
