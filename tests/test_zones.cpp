@@ -43,6 +43,13 @@ void random_rows(std::mt19937& rng, const std::array<int, D>& cells, double fill
   }
 }
 
+// Rows of unit u (runs [u 3^d, (u + 1) 3^d)).
+template <int D>
+int unit_rows(const ZoneLayout& L, int u) {
+  constexpr int NC = ipow(3, D);
+  return L.run_start[(u + 1) * NC] - L.run_start[u * NC];
+}
+
 template <int D>
 void check_layout(const std::array<int, D>& cells, double fill, int zone_rows, unsigned seed) {
   constexpr int NC = ipow(3, D);
@@ -125,12 +132,10 @@ TEST(Zones, ZonesShareTheRowsEvenly) {
   const ZoneLayout L = zone_layout<2>(coords, key, 1000);  // 12,800 rows: 8 zones
   ASSERT_EQ(L.zones, 8);
   EXPECT_EQ(L.axis, 1);
-  const int NC = 9;
-  const auto unit_rows = [&](int u) { return L.run_start[(u + 1) * NC] - L.run_start[u * NC]; };
   for (int z = 0; z < L.zones; ++z) {
-    EXPECT_NEAR(unit_rows(z) + unit_rows(L.zones + z), 12800 / 8, 1) << "zone " << z;
+    EXPECT_NEAR(unit_rows<2>(L, z) + unit_rows<2>(L, L.zones + z), 12800 / 8, 1) << "zone " << z;
     // Two layers and two nodes between zones; the trailing one as many.
-    EXPECT_EQ(unit_rows(L.zones + z), 402) << "separator " << z;
+    EXPECT_EQ(unit_rows<2>(L, L.zones + z), 402) << "separator " << z;
   }
 }
 
@@ -147,11 +152,9 @@ TEST(Zones, BedSplitsToALine3D) {
   const ZoneLayout L = zone_layout<3>(coords, key, 500);
   ASSERT_EQ(L.zones, 2);
   EXPECT_EQ(L.axis, 2);
-  const int NC = 27;
-  const auto unit_rows = [&](int u) { return L.run_start[(u + 1) * NC] - L.run_start[u * NC]; };
-  EXPECT_EQ(unit_rows(2), 51 * (2 * 11 + 2));  // between the zones
-  EXPECT_EQ(unit_rows(3), unit_rows(2));       // the trailing one
-  EXPECT_LE(std::abs(unit_rows(0) - unit_rows(1)), 51);
+  EXPECT_EQ(unit_rows<3>(L, 2), 51 * (2 * 11 + 2));   // between the zones
+  EXPECT_EQ(unit_rows<3>(L, 3), unit_rows<3>(L, 2));  // the trailing one
+  EXPECT_LE(std::abs(unit_rows<3>(L, 0) - unit_rows<3>(L, 1)), 51);
 }
 
 }  // namespace

@@ -155,8 +155,8 @@ ZoneLayout zone_layout(const std::vector<std::array<int, D>>& coords,
   std::vector<int> size(units * NC + 1, 0);
   for (int j = 0; j < n; ++j) {
     const int c = line_of(j);
-    int unit = units - 1;
-    for (int s = 0; s < z && z > 1; ++s) {
+    int unit = units - 1;  // every row breaks out below (one zone: first[0] = lines)
+    for (int s = 0; s < z; ++s) {
       if (c < first[s]) {
         unit = s;
         break;
