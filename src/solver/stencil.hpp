@@ -9,6 +9,7 @@
 #include <immintrin.h>
 #endif
 
+#include <cmath>
 #include <cstdint>
 
 #include "core/tensor.hpp"
@@ -28,6 +29,12 @@ inline void store3(double* x, __m256d v) {
   _mm_storeu_pd(x, _mm256_castpd256_pd128(v));
   _mm_store_sd(x + 2, _mm256_extractf128_pd(v, 1));
 }
+// All four lanes from x: the fourth is the next vector's first component,
+// read but never used (x must not be the storage's last vector).
+inline __m256d load4(const double* x) { return _mm256_loadu_pd(x); }
+// Lanes (x1, x2, x0, x3) and (x2, x0, x1, x3).
+inline __m256d rot1(__m256d x) { return _mm256_permute4x64_pd(x, 0b11001001); }
+inline __m256d rot2(__m256d x) { return _mm256_permute4x64_pd(x, 0b11010010); }
 #define SABLIER_LANES3 1
 #endif
 
@@ -39,20 +46,37 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
   Mat<D> L = Mat<D>::Zero();
 #ifdef SABLIER_LANES3
   if constexpr (D == 3) {
-    // Column b of L accumulates u_s g_s[b] over the stencil, in order: the
-    // same fused products and sums as the loop below, four lanes at a time
-    // (bit-identical results; 2-5% of a 3D sweep, docs/benchmarks.md).
+    // Three sums of lane products over the stencil: u_s * g_s gives the
+    // diagonal (L00, L11, L22), u_s * rot1(g_s) gives (L01, L12, L20) and
+    // u_s * rot2(g_s) gives (L02, L10, L21), with rot1 (g1, g2, g0) and
+    // rot2 (g2, g0, g1) lane permutations. Two loads per node instead of
+    // five (three broadcasts of g_s); the fourth lanes hold the next
+    // node's first component and are never used (stencil nodes but the last
+    // have a higher index after them: load4). Each sum is kept in three
+    // partial sums (s = 0, 1, 2 mod 3) added at the end, so that no chain of
+    // 27 fused multiply-adds waits on itself. The loop below does the same
+    // products and sums (bit-identical results; docs/benchmarks.md,
+    // twenty-first session).
     const double* gs = g.data();
-    __m256d c0 = _mm256_setzero_pd(), c1 = c0, c2 = c0;
-    for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 3) {
-      const __m256d v = load3(u[p.stencil[s]].data());
-      c0 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs), c0);
-      c1 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs + 1), c1);
-      c2 = _mm256_fmadd_pd(v, _mm256_broadcast_sd(gs + 2), c2);
+    __m256d a[3][3];
+    for (auto& r : a) r[0] = r[1] = r[2] = _mm256_setzero_pd();
+    for (int s = 0; s < ConeProblem<D>::NS; s += 3) {
+      for (int t = 0; t < 3; ++t) {
+        const int k = s + t;
+        const bool last = k == ConeProblem<D>::NS - 1;
+        const double* uk = u[p.stencil[k]].data();
+        const __m256d v = last ? load3(uk) : load4(uk);
+        const __m256d w = last ? load3(gs + 3 * k) : load4(gs + 3 * k);
+        a[t][0] = _mm256_fmadd_pd(v, w, a[t][0]);
+        a[t][1] = _mm256_fmadd_pd(v, rot1(w), a[t][1]);
+        a[t][2] = _mm256_fmadd_pd(v, rot2(w), a[t][2]);
+      }
     }
-    store3(L.col(0).data(), c0);
-    store3(L.col(1).data(), c1);
-    store3(L.col(2).data(), c2);
+    alignas(32) double d[3][4];
+    for (int r = 0; r < 3; ++r)
+      _mm256_store_pd(d[r], _mm256_add_pd(_mm256_add_pd(a[0][r], a[1][r]), a[2][r]));
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) L(c, (c + r) % 3) = d[r][c];
     return to_sym<D>(L);
   }
   if constexpr (D == 2) {
@@ -72,8 +96,21 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     return to_sym<D>(L);
   }
 #endif
-  for (int s = 0; s < ConeProblem<D>::NS; ++s)
-    L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
+  if constexpr (D == 3) {
+    // Entry (c, (c + r) % 3) in partial sum s % 3, as the lanes above.
+    double d[3][3][3] = {};  // [s % 3][r][c]
+    for (int s = 0; s < ConeProblem<D>::NS; ++s) {
+      const Vec<D>& us = u[p.stencil[s]];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          d[s % 3][r][c] = std::fma(us[c], g(static_cast<int>((c + r) % 3), s), d[s % 3][r][c]);
+    }
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) L(c, (c + r) % 3) = (d[0][r][c] + d[1][r][c]) + d[2][r][c];
+  } else {
+    for (int s = 0; s < ConeProblem<D>::NS; ++s)
+      L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
+  }
   return to_sym<D>(L);
 }
 
@@ -86,18 +123,23 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   const auto& g = p.coupling[j];
 #ifdef SABLIER_LANES3
   if constexpr (D == 3) {
-    // T g_s = T_0 g_s[0] + T_1 g_s[1] + T_2 g_s[2] over T's columns, four
-    // lanes at a time (Eigen leaves it scalar; 5-10% of a 3D sweep,
-    // docs/benchmarks.md, fifteenth session).
-    const __m256d t0 = load3(T.col(0).data()), t1 = load3(T.col(1).data()),
-                  t2 = load3(T.col(2).data());
+    // T g_s = diag(T) * g_s + (T01, T12, T20) * rot1(g_s) + (T02, T10, T21)
+    // * rot2(g_s), lane by lane (rot1, rot2 and load4 as in apply_B): one
+    // load of g_s instead of three broadcasts, and one each of u and M^-1.
+    const __m256d t0 = _mm256_setr_pd(T(0, 0), T(1, 1), T(2, 2), 0.0),
+                  t1 = _mm256_setr_pd(T(0, 1), T(1, 2), T(2, 0), 0.0),
+                  t2 = _mm256_setr_pd(T(0, 2), T(1, 0), T(2, 1), 0.0);
     const double* gs = g.data();
     for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 3) {
       const std::int64_t o = p.stencil[s];
-      __m256d f = _mm256_mul_pd(t0, _mm256_broadcast_sd(gs));
-      f = _mm256_fmadd_pd(t1, _mm256_broadcast_sd(gs + 1), f);
-      f = _mm256_fmadd_pd(t2, _mm256_broadcast_sd(gs + 2), f);
-      store3(u[o].data(), _mm256_fmadd_pd(load3(im[o].data()), f, load3(u[o].data())));
+      const bool last = s == ConeProblem<D>::NS - 1;
+      const __m256d w = last ? load3(gs) : load4(gs);
+      __m256d f = _mm256_mul_pd(t0, w);
+      f = _mm256_fmadd_pd(t1, rot1(w), f);
+      f = _mm256_fmadd_pd(t2, rot2(w), f);
+      const __m256d m = last ? load3(im[o].data()) : load4(im[o].data());
+      const __m256d v = last ? load3(u[o].data()) : load4(u[o].data());
+      store3(u[o].data(), _mm256_fmadd_pd(m, f, v));
     }
     return;
   }
@@ -131,7 +173,17 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
 #endif
   for (int s = 0; s < ConeProblem<D>::NS; ++s) {
     const std::int64_t o = p.stencil[s];
-    u[o] += im[o].cwiseProduct(T * g.col(s));
+    if constexpr (D == 3) {
+      // T(c, c) g_c + T(c, c + 1) g_{c+1} + T(c, c + 2) g_{c+2}, as the lanes above.
+      for (int c = 0; c < 3; ++c) {
+        double f = T(c, c) * g(c, s);
+        f = std::fma(T(c, (c + 1) % 3), g((c + 1) % 3, s), f);
+        f = std::fma(T(c, (c + 2) % 3), g((c + 2) % 3, s), f);
+        u[o][c] = std::fma(im[o][c], f, u[o][c]);
+      }
+    } else {
+      u[o] += im[o].cwiseProduct(T * g.col(s));
+    }
   }
 }
 
