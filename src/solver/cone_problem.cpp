@@ -178,34 +178,41 @@ inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymV
 
 // Exact local updates of rows [begin, end), all of one run (rows of one
 // colour have disjoint stencils, so their order does not matter). Sand rows
-// go eight at a time: first every row's local problem, a loop without
-// branches whose loads and arithmetic overlap from row to row, then each
-// row's case, those that separate or stick updated at once and those that
-// slide queued for a batched slide solve, done when the queue is full and
-// by the caller at the end of each group of independent rows
-// (SweepOrder::walk). Contact rows (own colours) are updated one by one, in
-// order, with the queue empty.
+// go eight at a time, in passes that each hold eight independent chains of
+// arithmetic, so that the core overlaps them instead of waiting on one
+// row's: every row's local problem (gather and rotation), its separation
+// and stick candidates, its stress change (or its place in the queue of
+// slide solves, done eight at a time by slide_batch.hpp when the queue is
+// full and by the caller at the end of each group of independent rows,
+// SweepOrder::walk), then the scatters. Contact rows (own colours) are
+// updated one by one, in order, with the queue empty.
 template <int D>
 inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue) {
   constexpr int SD = sym_size(D);
   constexpr int kChunk = 8;
   for (int j = begin; j < std::min(end, p.first_contact); j += kChunk) {
     const int n = std::min(kChunk, std::min(end, p.first_contact) - j);
-    SymVec<D> x_old[kChunk], b[kChunk];
+    SymVec<D> x_old[kChunk], b[kChunk], x[kChunk];
+    DPCase result[kChunk];
+    bool solved[kChunk];
     for (int r = 0; r < n; ++r) local_problem<D>(p, j + r, x_old[r], b[r]);
+    for (int r = 0; r < n; ++r) {
+      const LocalDelassus<SD>& W = p.delassus[j + r];
+      solved[r] =
+          W.degenerate || solve_without_slide<SD>(W, b[r], p.aperture[j + r], x[r], result[r]);
+    }
     for (int r = 0; r < n; ++r) {
       const int row = j + r;
       const LocalDelassus<SD>& W = p.delassus[row];
       if (W.degenerate) {
         p.state[row] = DPCase::Inactive;
+        solved[r] = false;  // no change below
         continue;
       }
-      SymVec<D> x;
-      DPCase result;
-      if (solve_without_slide<SD>(W, b[r], p.aperture[row], x, result)) {
-        p.state[row] = result;
+      if (solved[r]) {
+        p.state[row] = result[r];
         p.beta[row] = 0.0;
-        finish_row<D>(p, row, x, x_old[r], p.cohesion[row]);
+        x[r] = W.unrotated_change(x[r], x_old[r], p.cohesion[row]);
         continue;
       }
       const int l = queue.batch.add(W, b[r], p.aperture[row], p.beta[row]);
@@ -213,6 +220,13 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
       queue.x_old[l] = x_old[r];
       queue.shift[l] = p.cohesion[row];
       if (queue.batch.full()) queue.flush(p);
+    }
+    for (int r = 0; r < n; ++r) {
+      // x[r] now holds the stress change of a row solved above (the queued
+      // ones are updated by the flush).
+      if (!solved[r] || x[r].squaredNorm() == 0.0) continue;
+      scatter_stress<D>(p, j + r, x[r]);
+      p.lambda[j + r] += x[r];
     }
   }
   for (int j = std::max(begin, p.first_contact); j < end; ++j) update_contact_row<D>(p, j);
