@@ -178,28 +178,36 @@ inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymV
 
 // Exact local updates of rows [begin, end), all of one run (rows of one
 // colour have disjoint stencils, so their order does not matter). Sand rows
-// go eight at a time, in passes that each hold eight independent chains of
-// arithmetic, so that the core overlaps them instead of waiting on one
-// row's: every row's local problem (gather and rotation), its separation
-// and stick candidates, its stress change (or its place in the queue of
-// slide solves, done eight at a time by slide_batch.hpp when the queue is
-// full and by the caller at the end of each group of independent rows,
-// SweepOrder::walk), then the scatters. Contact rows (own colours) are
-// updated one by one, in order, with the queue empty.
+// go eight at a time: first every row's local problem (gather and
+// rotation), a loop without branches whose loads and arithmetic overlap
+// from row to row; then each row's case, those that separate or stick
+// updated and those that slide queued for a batched slide solve
+// (slide_batch.hpp), done when the queue is full and by the caller at the
+// end of each group of independent rows (SweepOrder::walk). In 3D the
+// separation and stick candidates of the eight rows come in a pass of their
+// own and the scatters in another, after the cases: eight independent
+// chains of arithmetic per pass, which the core overlaps (4-6% less time
+// per 3D sweep; in 2D, whose rows cost a third as much, it cost 5%,
+// docs/benchmarks.md, twenty-first session). Either way, the same results.
+// Contact rows (own colours) are updated one by one, in order, with the
+// queue empty.
 template <int D>
 inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue) {
   constexpr int SD = sym_size(D);
   constexpr int kChunk = 8;
+  constexpr bool kPasses = D == 3;
   for (int j = begin; j < std::min(end, p.first_contact); j += kChunk) {
     const int n = std::min(kChunk, std::min(end, p.first_contact) - j);
     SymVec<D> x_old[kChunk], b[kChunk], x[kChunk];
     DPCase result[kChunk];
     bool solved[kChunk];
     for (int r = 0; r < n; ++r) local_problem<D>(p, j + r, x_old[r], b[r]);
-    for (int r = 0; r < n; ++r) {
-      const LocalDelassus<SD>& W = p.delassus[j + r];
-      solved[r] =
-          W.degenerate || solve_without_slide<SD>(W, b[r], p.aperture[j + r], x[r], result[r]);
+    if constexpr (kPasses) {
+      for (int r = 0; r < n; ++r) {
+        const LocalDelassus<SD>& W = p.delassus[j + r];
+        solved[r] =
+            W.degenerate || solve_without_slide<SD>(W, b[r], p.aperture[j + r], x[r], result[r]);
+      }
     }
     for (int r = 0; r < n; ++r) {
       const int row = j + r;
@@ -209,10 +217,16 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
         solved[r] = false;  // no change below
         continue;
       }
+      if constexpr (!kPasses)
+        solved[r] = solve_without_slide<SD>(W, b[r], p.aperture[row], x[r], result[r]);
       if (solved[r]) {
         p.state[row] = result[r];
         p.beta[row] = 0.0;
-        x[r] = W.unrotated_change(x[r], x_old[r], p.cohesion[row]);
+        if constexpr (kPasses) {
+          x[r] = W.unrotated_change(x[r], x_old[r], p.cohesion[row]);
+        } else {
+          finish_row<D>(p, row, x[r], x_old[r], p.cohesion[row]);
+        }
         continue;
       }
       const int l = queue.batch.add(W, b[r], p.aperture[row], p.beta[row]);
@@ -221,12 +235,14 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
       queue.shift[l] = p.cohesion[row];
       if (queue.batch.full()) queue.flush(p);
     }
-    for (int r = 0; r < n; ++r) {
-      // x[r] now holds the stress change of a row solved above (the queued
-      // ones are updated by the flush).
-      if (!solved[r] || x[r].squaredNorm() == 0.0) continue;
-      scatter_stress<D>(p, j + r, x[r]);
-      p.lambda[j + r] += x[r];
+    if constexpr (kPasses) {
+      for (int r = 0; r < n; ++r) {
+        // x[r] now holds the stress change of a row solved above (the
+        // queued ones are updated by the flush).
+        if (!solved[r] || x[r].squaredNorm() == 0.0) continue;
+        scatter_stress<D>(p, j + r, x[r]);
+        p.lambda[j + r] += x[r];
+      }
     }
   }
   for (int j = std::max(begin, p.first_contact); j < end; ++j) update_contact_row<D>(p, j);
