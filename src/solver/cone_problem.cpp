@@ -187,7 +187,7 @@ inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymV
 // separation and stick candidates of the eight rows come in a pass of their
 // own and the scatters in another, after the cases: eight independent
 // chains of arithmetic per pass, which the core overlaps (4-6% less time
-// per 3D sweep; in 2D, whose rows cost a third as much, it cost 5%,
+// per 3D sweep; in 2D, whose rows cost a third as much, it cost 3-5%,
 // docs/benchmarks.md, twenty-first session). Either way, the same results.
 // Contact rows (own colours) are updated one by one, in order, with the
 // queue empty.

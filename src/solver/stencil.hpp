@@ -2,10 +2,13 @@
 // (B u)_j from the velocities and the stress force's velocity change, with
 // AVX2 paths where Eigen leaves the small vectors' arithmetic scalar. Each
 // path does the same fused products and sums, in the same order, as the
-// plain loops after it, so results do not depend on which one runs.
+// plain loops after it, so results do not depend on which one runs
+// (tests/test_stencil.cpp compiles the loops alone, with
+// SABLIER_STENCIL_LOOPS defined, and compares the two bit for bit).
 #pragma once
 
-#if defined(__AVX2__) && defined(__FMA__)
+#if defined(__AVX2__) && defined(__FMA__) && !defined(SABLIER_STENCIL_LOOPS)
+#define SABLIER_STENCIL_LANES 1
 #include <immintrin.h>
 #endif
 
@@ -18,7 +21,7 @@
 namespace sablier {
 namespace solver_detail {
 
-#if defined(__AVX2__) && defined(__FMA__)
+#ifdef SABLIER_STENCIL_LANES
 // 3-vectors in the first three lanes of an AVX register (the fourth zero):
 // Eigen leaves 3-vector arithmetic scalar. Loaded and stored as two and one
 // doubles, so that nothing past the vector is read or written.
@@ -35,7 +38,6 @@ inline __m256d load4(const double* x) { return _mm256_loadu_pd(x); }
 // Lanes (x1, x2, x0, x3) and (x2, x0, x1, x3).
 inline __m256d rot1(__m256d x) { return _mm256_permute4x64_pd(x, 0b11001001); }
 inline __m256d rot2(__m256d x) { return _mm256_permute4x64_pd(x, 0b11010010); }
-#define SABLIER_LANES3 1
 #endif
 
 // (B u)_j: the symmetric part of sum_i u_i g_ji^T, in basis coordinates.
@@ -44,7 +46,7 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
   const Vec<D>* u = p.velocity.data() + p.node[j];
   const auto& g = p.coupling[j];
   Mat<D> L = Mat<D>::Zero();
-#ifdef SABLIER_LANES3
+#ifdef SABLIER_STENCIL_LANES
   if constexpr (D == 3) {
     // Three sums of lane products over the stencil: u_s * g_s gives the
     // diagonal (L00, L11, L22), u_s * rot1(g_s) gives (L01, L12, L20) and
@@ -121,7 +123,7 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   Vec<D>* u = p.velocity.data() + p.node[j];
   const Vec<D>* im = p.inv_mass.data() + p.node[j];
   const auto& g = p.coupling[j];
-#ifdef SABLIER_LANES3
+#ifdef SABLIER_STENCIL_LANES
   if constexpr (D == 3) {
     // T g_s = diag(T) * g_s + (T01, T12, T20) * rot1(g_s) + (T02, T10, T21)
     // * rot2(g_s), lane by lane (rot1, rot2 and load4 as in apply_B): one
