@@ -121,15 +121,20 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   p.lambda[j] += dl;
 }
 
+// Row j's stress change dl: to its velocities and its stress (none if zero).
+template <int D>
+inline void apply_change(ConeProblem<D>& p, int j, const SymVec<D>& dl) {
+  if (dl.squaredNorm() == 0.0) return;
+  scatter_stress<D>(p, j, dl);
+  p.lambda[j] += dl;
+}
+
 // Row j's update, given its new stress x in rotated coordinates and its old
 // one x_old (both rotated), and the apex shift of its cone along e_0.
 template <int D>
 inline void finish_row(ConeProblem<D>& p, int j, const SymVec<D>& x, const SymVec<D>& x_old,
                        double shift) {
-  const SymVec<D> dl = p.delassus[j].unrotated_change(x, x_old, shift);
-  if (dl.squaredNorm() == 0.0) return;
-  scatter_stress<D>(p, j, dl);
-  p.lambda[j] += dl;
+  apply_change<D>(p, j, p.delassus[j].unrotated_change(x, x_old, shift));
 }
 
 // Rows of a thread's share of a colour that wait for their slide solve, which
@@ -239,9 +244,7 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
       for (int r = 0; r < n; ++r) {
         // x[r] now holds the stress change of a row solved above (the
         // queued ones are updated by the flush).
-        if (!solved[r] || x[r].squaredNorm() == 0.0) continue;
-        scatter_stress<D>(p, j + r, x[r]);
-        p.lambda[j + r] += x[r];
+        if (solved[r]) apply_change<D>(p, j + r, x[r]);
       }
     }
   }
