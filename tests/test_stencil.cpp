@@ -53,6 +53,10 @@ ConeProblem<D> random_problem(unsigned seed) {
     p.node[j] = rows[j];
     for (int e = 0; e < p.coupling[j].size(); ++e) p.coupling[j].data()[e] = u(rng);
   }
+  // The sweeps' copies (3D: velocities and inverse masses by component,
+  // couplings by stencil line), as the solver makes them.
+  solver_detail::velocities_to_axes<D>(p);
+  solver_detail::pack_coupling_lines<D>(p, p.rows());
   return p;
 }
 
@@ -75,13 +79,15 @@ void check_paths() {
         ASSERT_TRUE(same_bits<sym_size(D)>(a, b)) << "gather, row " << j << ", seed " << seed;
         // B u as defined, to round-off.
         Mat<D> L = Mat<D>::Zero();
-        const Vec<D>* v = lanes.velocity.data() + lanes.node[j];
         for (int s = 0; s < ConeProblem<D>::NS; ++s)
-          L += v[lanes.stencil[s]] * lanes.coupling[j].col(s).transpose();
+          L += solver_detail::velocity_at<D>(lanes, lanes.node[j] + lanes.stencil[s]) *
+               lanes.coupling[j].col(s).transpose();
         EXPECT_LE((a - to_sym<D>(L)).norm(), 1e-13 * (1.0 + L.norm()));
         SymVec<D> dl;
         for (int e = 0; e < sym_size(D); ++e) dl[e] = u(rng);
-        std::vector<Vec<D>> before(lanes.velocity);
+        std::vector<Vec<D>> before(lanes.velocity.size());
+        for (std::size_t i = 0; i < before.size(); ++i)
+          before[i] = solver_detail::velocity_at<D>(lanes, std::int64_t(i));
         solver_detail::scatter_stress<D>(lanes, j, dl);
         stencil_loops::scatter_stress<D>(loops, j, dl);
         const Mat<D> T = from_sym<D>(dl);
@@ -89,11 +95,13 @@ void check_paths() {
           const std::int64_t i = lanes.node[j] + lanes.stencil[s];
           const Vec<D> expected =
               before[i] + lanes.inv_mass[i].cwiseProduct(T * lanes.coupling[j].col(s));
-          EXPECT_LE((lanes.velocity[i] - expected).norm(), 1e-13 * (1.0 + expected.norm()));
+          EXPECT_LE((solver_detail::velocity_at<D>(lanes, i) - expected).norm(),
+                    1e-13 * (1.0 + expected.norm()));
         }
       }
     for (std::size_t i = 0; i < lanes.velocity.size(); ++i)
-      ASSERT_TRUE(same_bits<D>(lanes.velocity[i], loops.velocity[i]))
+      ASSERT_TRUE(same_bits<D>(solver_detail::velocity_at<D>(lanes, std::int64_t(i)),
+                               solver_detail::velocity_at<D>(loops, std::int64_t(i))))
           << "scatter, node " << i << ", seed " << seed;
   }
 }

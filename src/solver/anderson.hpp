@@ -11,6 +11,7 @@
 #include "core/tensor.hpp"
 #include "solver/cone_problem.hpp"
 #include "solver/slide_batch.hpp"
+#include "solver/stencil.hpp"
 #include "solver/team.hpp"
 
 namespace sablier {
@@ -187,7 +188,7 @@ class AndersonMixer {
            const OwnRows& own_rows, State& st) const {
     const auto [q0, q1] = blocks_->share(team);
     if (m_ <= 0) {
-      for (std::int64_t q = q0; q < q1; ++q) u_before[q] = p.velocity[free[q]];
+      for (std::int64_t q = q0; q < q1; ++q) u_before[q] = velocity_at<D>(p, free[q]);
       return;
     }
     // The history bookkeeping, the same on every thread.
@@ -222,7 +223,7 @@ class AndersonMixer {
           for (std::int64_t c0 = b0; c0 < b1; c0 += kChunk) {
             const std::int64_t c1 = std::min(b1, c0 + kChunk);
             for (std::int64_t q = c0; q < c1; ++q) {
-              const Vec<D>& u = p.velocity[free[q]];
+              const Vec<D> u = velocity_at<D>(p, free[q]);
               const Vec<D> f = u - u_before[q];
               if (record) {
                 dF_[slot][q] = f - f_prev_[q];
@@ -249,10 +250,10 @@ class AndersonMixer {
     // The thread's free nodes (the blocks it summed): u(x_{k+1}), also kept as
     // the next sweep's u_before.
     for (std::int64_t q = q0; q < q1; ++q) {
-      Vec<D> u = p.velocity[free[q]];
+      Vec<D> u = velocity_at<D>(p, free[q]);
       if (combine) {
         for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
-        p.velocity[free[q]] = u;
+        set_velocity_at<D>(p, free[q], u);
       }
       u_before[q] = u;
     }

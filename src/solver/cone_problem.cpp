@@ -18,10 +18,15 @@ using solver_detail::AndersonMixer;
 using solver_detail::apply_B;
 using solver_detail::deterministic_sums;
 using solver_detail::free_velocities;
+using solver_detail::pack_coupling_lines;
 using solver_detail::scatter_stress;
+using solver_detail::set_velocity_at;
 using solver_detail::SumBlocks;
 using solver_detail::SweepOrder;
 using solver_detail::team_size;
+using solver_detail::velocities_from_axes;
+using solver_detail::velocities_to_axes;
+using solver_detail::velocity_at;
 
 template <int D>
 void ConeProblem<D>::resize_rows(int n) {
@@ -39,7 +44,9 @@ void ConeProblem<D>::resize_rows(int n) {
 
 namespace {
 
-// Velocity of a body's point at `arm` from its centre: V + omega x arm.
+// Velocity of a body's point at `arm` from its centre: V + omega x arm. The
+// bodies' entries stay in `velocity` during a solve (stencil.hpp,
+// velocity_at).
 template <int D>
 inline Vec<D> body_point_velocity(const ConeProblem<D>& p, std::int64_t v, const Vec<D>& arm) {
   const Vec<D>& V = p.velocity[v];
@@ -84,7 +91,9 @@ inline Vec<D> contact_force(const ConeProblem<D>& p, int j, const SymVec<D>& dl)
 template <int D>
 inline void move_contact_node(ConeProblem<D>& p, int j, const Vec<D>& f) {
   const std::int64_t i = p.node[j];
-  p.velocity[i] += p.inv_mass[i].cwiseProduct(f);
+  Vec<D> u = velocity_at<D>(p, i);
+  u += p.inv_mass[i].cwiseProduct(f);
+  set_velocity_at<D>(p, i, u);
 }
 
 // One exact local update of contact row j (cone_problem.hpp): the Coulomb
@@ -103,7 +112,7 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const Vec<D> x_old = W.rotate(r_old);
   const std::int64_t body = j >= p.first_body_row ? p.contact_body[c] : -1;
   const std::int64_t other = j >= p.first_body_row ? p.other_body(c) : -1;
-  Vec<D> relative = p.velocity[p.node[j]] - p.contact_velocity[c];
+  Vec<D> relative = velocity_at<D>(p, p.node[j]) - p.contact_velocity[c];
   if (body >= 0) relative -= body_point_velocity<D>(p, body, p.contact_arm[c]);
   if (other >= 0) relative += body_point_velocity<D>(p, other, p.contact_other_arm[c]);
   const Vec<D> b = W.rotate(F.transpose() * relative) - W.apply_rotated(x_old);
@@ -312,10 +321,15 @@ void assemble_delassus(ConeProblem<D>& p) {
     }
     p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
   }
+  pack_coupling_lines<D>(p, sand);
 }
 
+namespace {
+
+// apply_stress_to_velocity on the sweeps' velocities (velocity_at): in 3D
+// between velocities_to_axes and velocities_from_axes.
 template <int D>
-void apply_stress_to_velocity(ConeProblem<D>& p) {
+void add_stress_velocities(ConeProblem<D>& p) {
   // In the sweep's order and on its team (SweepOrder), so that each velocity
   // sums its stresses in one order whatever the thread count.
   const auto move = [&p](int j) {
@@ -346,6 +360,15 @@ void apply_stress_to_velocity(ConeProblem<D>& p) {
   }
 }
 
+}  // namespace
+
+template <int D>
+void apply_stress_to_velocity(ConeProblem<D>& p) {
+  velocities_to_axes<D>(p);
+  add_stress_velocities<D>(p);
+  velocities_from_axes<D>(p);
+}
+
 template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
                                int anderson_depth, std::vector<double>* history) {
@@ -362,14 +385,15 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   free_velocities(p, free, blocks, segment_block);
   const std::int64_t nf = static_cast<std::int64_t>(free.size());
   std::vector<Vec<D>> weight(nf), u_free(nf), u_prev(nf);
+  velocities_to_axes<D>(p);  // the sweeps' copy (3D), copied back at the end
   for (std::int64_t q = 0; q < nf; ++q) {
     const std::int64_t i = free[q];
     for (int c = 0; c < D; ++c)
       weight[q][c] = p.inv_mass[i][c] > 0.0 ? 1.0 / p.inv_mass[i][c] : 0.0;
-    u_free[q] = p.velocity[i];  // before any stress acts
+    u_free[q] = velocity_at<D>(p, i);  // before any stress acts
   }
   std::fill(p.beta.begin(), p.beta.end(), 0.0);
-  apply_stress_to_velocity(p);  // warm start
+  add_stress_velocities<D>(p);  // warm start
   AndersonMixer<D> mixer(anderson_depth, n, blocks);
   // One parallel region for the whole solve: a fork and join per colour
   // would cost more than a barrier (measured: about 2 us against 0.4 us on
@@ -428,7 +452,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     bool allocated = false;
     // u_prev = the velocities before each sweep (after the first, the
     // mixer leaves them there).
-    for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = p.velocity[free[q]];
+    for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = velocity_at<D>(p, free[q]);
     for (int it = 1; it <= max_iterations; ++it) {
       team.sync();
       order.walk(
@@ -437,7 +461,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
       double sums[2];
       deterministic_sums(team, blocks, 2, partial, sums, [&](std::int64_t q, double* acc) {
-        const Vec<D>& u = p.velocity[free[q]];
+        const Vec<D> u = velocity_at<D>(p, free[q]);
         const Vec<D> a = u - u_prev[q], b = u - u_free[q];
         acc[0] += a.dot(weight[q].cwiseProduct(a));
         acc[1] += b.dot(weight[q].cwiseProduct(b));
@@ -469,7 +493,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
             best_state[j] = p.state[j];
           }
         });
-        for (std::int64_t q = q0; q < q1; ++q) best_u[q] = p.velocity[free[q]];
+        for (std::int64_t q = q0; q < q1; ++q) best_u[q] = velocity_at<D>(p, free[q]);
       }
       if (it < max_iterations)
         mixer.mix(team, p, free, u_prev, weight, sums[0], own_rows, mix_state);
@@ -483,7 +507,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           p.state[j] = best_state[j];
         }
       });
-      for (std::int64_t q = q0; q < q1; ++q) p.velocity[free[q]] = best_u[q];
+      for (std::int64_t q = q0; q < q1; ++q) set_velocity_at<D>(p, free[q], best_u[q]);
       my_residual = best;
     }
 #pragma omp master
@@ -492,6 +516,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       residual = my_residual;
     }
   }
+  velocities_from_axes<D>(p);
   report.iterations = iterations;
   report.residual = residual;
   report.hit_cap = report.residual > tolerance;
@@ -513,7 +538,11 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
 
 template <int D>
 SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j) {
-  SymVec<D> y = apply_B<D>(p, j);
+  // From `velocity` (the sweeps' copy of 3D is the solver's own).
+  Mat<D> L = Mat<D>::Zero();
+  for (int s = 0; s < ConeProblem<D>::NS; ++s)
+    L += p.velocity[p.node[j] + p.stencil[s]] * p.coupling[j].col(s).transpose();
+  SymVec<D> y = to_sym<D>(L);
   y[0] += p.k[j];
   return y / p.volume[j];
 }

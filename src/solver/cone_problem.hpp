@@ -24,6 +24,7 @@
 // layout as further rows and unknowns.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -50,6 +51,22 @@ struct ConeProblem {
   std::vector<Vec<D>> velocity;  // in: unconstrained velocity u_f; out: u
   std::vector<Vec<D>> inv_mass;  // dt / (rho m_i) on free components, else 0
   std::array<std::int64_t, NS> stencil{};  // velocity index offsets of a row's stencil
+
+  // The sweeps' own copy of the velocities in 3D (solver/stencil.hpp): one
+  // array per component (velocity_by_axis[c][i] = velocity[i][c]), so that
+  // each line of a stencil, three nodes along x at consecutive indices, is
+  // one four-lane load per component. The solver fills it from `velocity`
+  // when it starts, and `velocity` from it when it ends; between the two the
+  // sweeps read and write this copy only. Likewise the inverse masses by
+  // component, and each sand row's coupling vectors by line
+  // (coupling_lines, kLineDoubles per row: for each of the 9 lines the x, y
+  // and z components of its three nodes; assemble_delassus fills it). Each
+  // array has kLanePadding zeros past its end, read by the last line's
+  // fourth lane. Empty in 2D, whose sweeps use `velocity` itself.
+  static constexpr int kLineDoubles = D * NS;
+  static constexpr int kLanePadding = 4;
+  std::array<std::vector<double>, D> velocity_by_axis, inv_mass_by_axis;
+  std::vector<double> coupling_lines;
 
   // Stress rows, in runs of rows with pairwise disjoint stencils (rows of
   // one colour: node coordinates mod 3), rows [colour_start[c],

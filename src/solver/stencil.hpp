@@ -12,8 +12,11 @@
 #include <immintrin.h>
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <vector>
 
 #include "core/tensor.hpp"
 #include "solver/cone_problem.hpp"
@@ -40,6 +43,85 @@ inline __m256d rot1(__m256d x) { return _mm256_permute4x64_pd(x, 0b11001001); }
 inline __m256d rot2(__m256d x) { return _mm256_permute4x64_pd(x, 0b11010010); }
 #endif
 
+// The velocity the sweeps see at entry i, and its update: in 3D a grid
+// node's in ConeProblem::velocity_by_axis, a rigid body's (entries from
+// first_body_entry on, which only the body rows and the solver's loops over
+// all entries touch) in ConeProblem::velocity; in 2D ConeProblem::velocity.
+template <int D>
+inline Vec<D> velocity_at(const ConeProblem<D>& p, std::int64_t i) {
+  if constexpr (D == 3) {
+    if (i >= p.first_body_entry) return p.velocity[i];
+    return Vec<D>(p.velocity_by_axis[0][i], p.velocity_by_axis[1][i], p.velocity_by_axis[2][i]);
+  } else {
+    return p.velocity[i];
+  }
+}
+template <int D>
+inline void set_velocity_at(ConeProblem<D>& p, std::int64_t i, const Vec<D>& v) {
+  if constexpr (D == 3) {
+    if (i >= p.first_body_entry) {
+      p.velocity[i] = v;
+      return;
+    }
+    for (int c = 0; c < 3; ++c) p.velocity_by_axis[c][i] = v[c];
+  } else {
+    p.velocity[i] = v;
+  }
+}
+
+// 3D: the velocities and inverse masses by component from p.velocity and
+// p.inv_mass (before the sweeps), and p.velocity back from them (after).
+template <int D>
+inline void velocities_to_axes(ConeProblem<D>& p) {
+  if constexpr (D == 3) {
+    const std::int64_t n = static_cast<std::int64_t>(p.velocity.size());
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double>& u = p.velocity_by_axis[c];
+      std::vector<double>& m = p.inv_mass_by_axis[c];
+      u.assign(n + ConeProblem<D>::kLanePadding, 0.0);
+      m.assign(n + ConeProblem<D>::kLanePadding, 0.0);
+      for (std::int64_t i = 0; i < n; ++i) {
+        u[i] = p.velocity[i][c];
+        m[i] = p.inv_mass[i][c];
+      }
+    }
+  }
+}
+template <int D>
+inline void velocities_from_axes(ConeProblem<D>& p) {
+  if constexpr (D == 3) {
+    const std::int64_t n =
+        std::min<std::int64_t>(static_cast<std::int64_t>(p.velocity.size()), p.first_body_entry);
+    for (std::int64_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) p.velocity[i][c] = p.velocity_by_axis[c][i];
+  }
+}
+
+// 3D: the sand rows' coupling vectors by stencil line (ConeProblem::
+// coupling_lines): line l (nodes 3l, 3l + 1, 3l + 2 of the stencil, which
+// differ by one along x) holds the x components of its three nodes, then
+// their y and z components.
+template <int D>
+inline void pack_coupling_lines(ConeProblem<D>& p, int sand_rows) {
+  if constexpr (D == 3) {
+    constexpr int kLine = ConeProblem<D>::kLineDoubles;
+    for (int s = 0; s < ConeProblem<D>::NS; ++s)
+      if (p.stencil[s] != p.stencil[s - s % 3] + s % 3)
+        throw std::logic_error(
+            "pack_coupling_lines: stencil nodes 3l, 3l+1, 3l+2 are not consecutive");
+    p.coupling_lines.resize(std::size_t(sand_rows) * kLine + ConeProblem<D>::kLanePadding);
+    std::fill(p.coupling_lines.end() - ConeProblem<D>::kLanePadding, p.coupling_lines.end(), 0.0);
+#pragma omp parallel for schedule(static)
+    for (int j = 0; j < sand_rows; ++j) {
+      double* out = p.coupling_lines.data() + std::size_t(j) * kLine;
+      const auto& g = p.coupling[j];
+      for (int l = 0; l < 9; ++l)
+        for (int c = 0; c < 3; ++c)
+          for (int x = 0; x < 3; ++x) out[9 * l + 3 * c + x] = g(c, 3 * l + x);
+    }
+  }
+}
+
 // (B u)_j: the symmetric part of sum_i u_i g_ji^T, in basis coordinates.
 template <int D>
 inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
@@ -48,37 +130,33 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
   Mat<D> L = Mat<D>::Zero();
 #ifdef SABLIER_STENCIL_LANES
   if constexpr (D == 3) {
-    // Three sums of lane products over the stencil: u_s * g_s gives the
-    // diagonal (L00, L11, L22), u_s * rot1(g_s) gives (L01, L12, L20) and
-    // u_s * rot2(g_s) gives (L02, L10, L21), with rot1 (g1, g2, g0) and
-    // rot2 (g2, g0, g1) lane permutations. Two loads per node instead of
-    // five (three broadcasts of g_s); the fourth lanes hold the next
-    // node's first component and are never used (stencil nodes but the last
-    // have a higher index after them: load4). Each sum is kept in three
-    // partial sums (s = 0, 1, 2 mod 3) added at the end, so that no chain of
-    // 27 fused multiply-adds waits on itself. The loop below does the same
-    // products and sums (bit-identical results; docs/benchmarks.md,
-    // twenty-first session).
-    const double* gs = g.data();
+    // Lines in lanes: for each of the stencil's 9 lines (three nodes along
+    // x, consecutive indices) one four-lane load of each velocity component
+    // (ConeProblem::velocity_by_axis) and of each coupling component
+    // (coupling_lines), and nine sums of lane products a[c][d] += u_c * g_d:
+    // lane x holds the line's node x. The fourth lanes (the next node's
+    // velocity, the next component's coupling) are never used. Each entry
+    // L(c, d) is then (lane 0 + lane 1) + lane 2: the same fused products and
+    // sums as the loop below (bit-identical results).
+    const std::int64_t c0 = p.node[j];
+    const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
+    const double* ux = p.velocity_by_axis[0].data() + c0;
+    const double* uy = p.velocity_by_axis[1].data() + c0;
+    const double* uz = p.velocity_by_axis[2].data() + c0;
     __m256d a[3][3];
     for (auto& r : a) r[0] = r[1] = r[2] = _mm256_setzero_pd();
-    for (int s = 0; s < ConeProblem<D>::NS; s += 3) {
-      for (int t = 0; t < 3; ++t) {
-        const int k = s + t;
-        const bool last = k == ConeProblem<D>::NS - 1;
-        const double* uk = u[p.stencil[k]].data();
-        const __m256d v = last ? load3(uk) : load4(uk);
-        const __m256d w = last ? load3(gs + 3 * k) : load4(gs + 3 * k);
-        a[t][0] = _mm256_fmadd_pd(v, w, a[t][0]);
-        a[t][1] = _mm256_fmadd_pd(v, rot1(w), a[t][1]);
-        a[t][2] = _mm256_fmadd_pd(v, rot2(w), a[t][2]);
-      }
+    for (int l = 0; l < 9; ++l, gl += 9) {
+      const std::int64_t o = p.stencil[3 * l];
+      const __m256d v[3] = {load4(ux + o), load4(uy + o), load4(uz + o)};
+      const __m256d w[3] = {load4(gl), load4(gl + 3), load4(gl + 6)};
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d) a[c][d] = _mm256_fmadd_pd(v[c], w[d], a[c][d]);
     }
-    alignas(32) double d[3][4];
-    for (int r = 0; r < 3; ++r)
-      _mm256_store_pd(d[r], _mm256_add_pd(_mm256_add_pd(a[0][r], a[1][r]), a[2][r]));
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) L(c, (c + r) % 3) = d[r][c];
+    alignas(32) double e[3][3][4];
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d) _mm256_store_pd(e[c][d], a[c][d]);
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d) L(c, d) = (e[c][d][0] + e[c][d][1]) + e[c][d][2];
     return to_sym<D>(L);
   }
   if constexpr (D == 2) {
@@ -99,16 +177,20 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
   }
 #endif
   if constexpr (D == 3) {
-    // Entry (c, (c + r) % 3) in partial sum s % 3, as the lanes above.
-    double d[3][3][3] = {};  // [s % 3][r][c]
-    for (int s = 0; s < ConeProblem<D>::NS; ++s) {
-      const Vec<D>& us = u[p.stencil[s]];
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          d[s % 3][r][c] = std::fma(us[c], g(static_cast<int>((c + r) % 3), s), d[s % 3][r][c]);
+    // Entry (c, d) in partial sum x (the node's place in its line), as the
+    // lanes above.
+    const std::int64_t c0 = p.node[j];
+    const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
+    double e[3][3][3] = {};  // [c][d][x]
+    for (int l = 0; l < 9; ++l, gl += 9) {
+      const std::int64_t o = c0 + p.stencil[3 * l];
+      for (int c = 0; c < 3; ++c)
+        for (int d = 0; d < 3; ++d)
+          for (int x = 0; x < 3; ++x)
+            e[c][d][x] = std::fma(p.velocity_by_axis[c][o + x], gl[3 * d + x], e[c][d][x]);
     }
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) L(c, (c + r) % 3) = (d[0][r][c] + d[1][r][c]) + d[2][r][c];
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d) L(c, d) = (e[c][d][0] + e[c][d][1]) + e[c][d][2];
   } else {
     for (int s = 0; s < ConeProblem<D>::NS; ++s)
       L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
@@ -125,23 +207,32 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   const auto& g = p.coupling[j];
 #ifdef SABLIER_STENCIL_LANES
   if constexpr (D == 3) {
-    // T g_s = diag(T) * g_s + (T01, T12, T20) * rot1(g_s) + (T02, T10, T21)
-    // * rot2(g_s), lane by lane (rot1, rot2 and load4 as in apply_B): one
-    // load of g_s instead of three broadcasts, and one each of u and M^-1.
-    const __m256d t0 = _mm256_setr_pd(T(0, 0), T(1, 1), T(2, 2), 0.0),
-                  t1 = _mm256_setr_pd(T(0, 1), T(1, 2), T(2, 0), 0.0),
-                  t2 = _mm256_setr_pd(T(0, 2), T(1, 0), T(2, 1), 0.0);
-    const double* gs = g.data();
-    for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 3) {
-      const std::int64_t o = p.stencil[s];
-      const bool last = s == ConeProblem<D>::NS - 1;
-      const __m256d w = last ? load3(gs) : load4(gs);
-      __m256d f = _mm256_mul_pd(t0, w);
-      f = _mm256_fmadd_pd(t1, rot1(w), f);
-      f = _mm256_fmadd_pd(t2, rot2(w), f);
-      const __m256d m = last ? load3(im[o].data()) : load4(im[o].data());
-      const __m256d v = last ? load3(u[o].data()) : load4(u[o].data());
-      store3(u[o].data(), _mm256_fmadd_pd(m, f, v));
+    // Lines in lanes, as in apply_B: for each line the three nodes' x, y and
+    // z components of T g_s, each from the coupling's three component loads
+    // (T(c, c) g_c, then T(c, c + 1) g_{c+1} and T(c, c + 2) g_{c+2} fused,
+    // indices mod 3), and u_c += M_c^{-1} (T g)_c in lanes, stored by three
+    // lanes only (the fourth is the next node's, which this row does not
+    // move). The loop below does the same (bit-identical results).
+    const std::int64_t c0 = p.node[j];
+    const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
+    double* u[3] = {p.velocity_by_axis[0].data() + c0, p.velocity_by_axis[1].data() + c0,
+                    p.velocity_by_axis[2].data() + c0};
+    const double* m[3] = {p.inv_mass_by_axis[0].data() + c0, p.inv_mass_by_axis[1].data() + c0,
+                          p.inv_mass_by_axis[2].data() + c0};
+    __m256d t[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d) t[c][d] = _mm256_set1_pd(T(c, d));
+    const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
+    for (int l = 0; l < 9; ++l, gl += 9) {
+      const std::int64_t o = p.stencil[3 * l];
+      const __m256d w[3] = {load4(gl), load4(gl + 3), load4(gl + 6)};
+      for (int c = 0; c < 3; ++c) {
+        const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+        __m256d f = _mm256_mul_pd(t[c][c], w[c]);
+        f = _mm256_fmadd_pd(t[c][c1], w[c1], f);
+        f = _mm256_fmadd_pd(t[c][c2], w[c2], f);
+        _mm256_maskstore_pd(u[c] + o, three, _mm256_fmadd_pd(load4(m[c] + o), f, load4(u[c] + o)));
+      }
     }
     return;
   }
@@ -176,12 +267,17 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   for (int s = 0; s < ConeProblem<D>::NS; ++s) {
     const std::int64_t o = p.stencil[s];
     if constexpr (D == 3) {
-      // T(c, c) g_c + T(c, c + 1) g_{c+1} + T(c, c + 2) g_{c+2}, as the lanes above.
+      // T(c, c) g_c + T(c, c + 1) g_{c+1} + T(c, c + 2) g_{c+2}, as the lanes
+      // above, from the coupling by lines.
+      const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles +
+                         9 * (s / 3) + s % 3;
+      const std::int64_t i = p.node[j] + o;
       for (int c = 0; c < 3; ++c) {
-        double f = T(c, c) * g(c, s);
-        f = std::fma(T(c, (c + 1) % 3), g((c + 1) % 3, s), f);
-        f = std::fma(T(c, (c + 2) % 3), g((c + 2) % 3, s), f);
-        u[o][c] = std::fma(im[o][c], f, u[o][c]);
+        double f = T(c, c) * gl[3 * c];
+        f = std::fma(T(c, (c + 1) % 3), gl[3 * ((c + 1) % 3)], f);
+        f = std::fma(T(c, (c + 2) % 3), gl[3 * ((c + 2) % 3)], f);
+        double& ui = p.velocity_by_axis[c][i];
+        ui = std::fma(p.inv_mass_by_axis[c][i], f, ui);
       }
     } else {
       u[o] += im[o].cwiseProduct(T * g.col(s));
