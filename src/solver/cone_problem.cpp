@@ -178,7 +178,7 @@ inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymV
   const LocalDelassus<sym_size(D)>& W = p.delassus[j];
   SymVec<D> y = apply_B<D>(p, j);
   y[0] += p.k[j];
-  y *= 1.0 / p.volume[j];
+  y *= p.inv_volume[j];
   W.rotated_problem(y, p.lambda[j], x_old, b);
   // Cohesion: the cone's apex sits at lambda = -shift e_0; solve for the
   // shifted stress lambda + shift e_0 (METHOD.md section 1).
@@ -322,6 +322,8 @@ void assemble_delassus(ConeProblem<D>& p) {
     p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
   }
   pack_coupling_lines<D>(p, sand);
+  p.inv_volume.resize(sand);
+  for (int j = 0; j < sand; ++j) p.inv_volume[j] = 1.0 / p.volume[j];
 }
 
 namespace {

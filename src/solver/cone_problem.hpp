@@ -81,6 +81,7 @@ struct ConeProblem {
   std::vector<std::int64_t> node;     // velocity index of the row's centre node
   std::vector<Coupling> coupling;     // g_ji, columns in stencil order
   std::vector<double> volume;         // V_j, m^3
+  std::vector<double> inv_volume;     // 1 / V_j of the sand rows (assemble_delassus)
   std::vector<double> k;              // (phi_max V_j - Phi_j)^+ / (sqrt(2d) dt), m^3/s
   std::vector<double> aperture;       // cone aperture (METHOD.md section 4)
   std::vector<double> cohesion;       // apex shift along e_0, Pa (cone on lambda + shift e_0)

@@ -16,6 +16,11 @@
 // with c = Q^T w_TN, d = Q^T b_T, z = Q^T x_T; beta = 0 is the stick candidate.
 #pragma once
 
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#define SABLIER_ROTATION_LANES 1
+#endif
+
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -43,6 +48,7 @@ struct LocalDelassus {
   VecT c = VecT::Zero();   // Q^T w_TN
   VecT ev = VecT::Zero();  // eigenvalues of W_TT (+ regularisation)
   MatT Q = MatT::Identity();
+  MatT Qt = MatT::Identity();  // Q^T: its columns are Q's rows (rotated_problem's lanes)
   // For the stick candidate (beta = 0) without divisions: 1 / ev, c / ev and
   // 1 / (w_nn - c . (c / ev)), the inverse Schur complement of W_TT.
   VecT inv_ev = VecT::Zero();
@@ -68,6 +74,7 @@ struct LocalDelassus {
       eig.compute(wtt);
     }
     Q = eig.eigenvectors();
+    Qt = Q.transpose();
     ev = eig.eigenvalues().array().max(0.0) + eps;
     c = Q.transpose() * W.template bottomLeftCorner<T, 1>();
     inv_ev = ev.cwiseInverse();
@@ -90,6 +97,37 @@ struct LocalDelassus {
   // A row's old stress x_old = rotate(lambda) and b = rotate(y) - W x_old in
   // rotated coordinates, from its strain rate y and stress lambda.
   void rotated_problem(const VecS& y, const VecS& lambda, VecS& x_old, VecS& b) const {
+#ifdef SABLIER_ROTATION_LANES
+    if constexpr (T == 5) {
+      // 3D: the products with Q^T for k = 0..3 in four lanes (a row of Q is
+      // a column of Qt), k = 4 alone; each lane does the loop's fused
+      // products and sums in its order (bit-identical results).
+      __m256d zv = _mm256_setzero_pd(), yv = _mm256_setzero_pd();
+      double z4 = 0.0, y4 = 0.0;
+      for (int m = 0; m < T; ++m) {
+        const __m256d q = _mm256_loadu_pd(Qt.data() + T * m);
+        zv = _mm256_fmadd_pd(q, _mm256_set1_pd(lambda[1 + m]), zv);
+        yv = _mm256_fmadd_pd(q, _mm256_set1_pd(y[1 + m]), yv);
+        z4 = std::fma(Q(m, 4), lambda[1 + m], z4);
+        y4 = std::fma(Q(m, 4), y[1 + m], y4);
+      }
+      const __m256d t = _mm256_fnmadd_pd(_mm256_loadu_pd(c.data()), _mm256_set1_pd(lambda[0]), yv);
+      alignas(32) double z[4], bt[4];
+      _mm256_store_pd(z, zv);
+      _mm256_store_pd(bt, _mm256_fnmadd_pd(_mm256_loadu_pd(ev.data()), zv, t));
+      x_old[0] = lambda[0];
+      double b0 = std::fma(-w_nn, lambda[0], y[0]);
+      for (int k = 0; k < 4; ++k) {
+        x_old[1 + k] = z[k];
+        b0 = std::fma(-c[k], z[k], b0);
+        b[1 + k] = bt[k];
+      }
+      x_old[5] = z4;
+      b[0] = std::fma(-c[4], z4, b0);
+      b[5] = std::fma(-ev[4], z4, std::fma(-c[4], lambda[0], y4));
+      return;
+    }
+#endif
     x_old[0] = lambda[0];
     double b0 = y[0] - w_nn * lambda[0];
     for (int k = 0; k < T; ++k) {
@@ -109,6 +147,24 @@ struct LocalDelassus {
   VecS unrotated_change(const VecS& x, const VecS& x_old, double shift) const {
     VecS out;
     out[0] = x[0] - shift - x_old[0];
+#ifdef SABLIER_ROTATION_LANES
+    if constexpr (T == 5) {
+      // 3D: m = 0..3 in four lanes (a column of Q), m = 4 alone, the loop's
+      // products and sums in its order (bit-identical results).
+      __m256d ov = _mm256_setzero_pd();
+      double o4 = 0.0;
+      for (int k = 0; k < T; ++k) {
+        const double d = x[1 + k] - x_old[1 + k];
+        ov = _mm256_fmadd_pd(_mm256_loadu_pd(Q.data() + T * k), _mm256_set1_pd(d), ov);
+        o4 = std::fma(Q(4, k), d, o4);
+      }
+      alignas(32) double o[4];
+      _mm256_store_pd(o, ov);
+      for (int m = 0; m < 4; ++m) out[1 + m] = o[m];
+      out[5] = o4;
+      return out;
+    }
+#endif
     for (int m = 0; m < T; ++m) {
       double s = 0.0;
       for (int k = 0; k < T; ++k) s += Q(m, k) * (x[1 + k] - x_old[1 + k]);

@@ -152,11 +152,25 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
       for (int c = 0; c < 3; ++c)
         for (int d = 0; d < 3; ++d) a[c][d] = _mm256_fmadd_pd(v[c], w[d], a[c][d]);
     }
-    alignas(32) double e[3][3][4];
+    // The sums' lanes 0, 1, 2 gathered into three registers by a 4 x 4
+    // transpose, four sums at a time (entries 0-3 and 4-7 of a in row
+    // order), the ninth alone.
+    const auto lane_sums = [](__m256d r0, __m256d r1, __m256d r2, __m256d r3) {
+      const __m256d lo01 = _mm256_unpacklo_pd(r0, r1), hi01 = _mm256_unpackhi_pd(r0, r1);
+      const __m256d lo23 = _mm256_unpacklo_pd(r2, r3), hi23 = _mm256_unpackhi_pd(r2, r3);
+      const __m256d l0 = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+      const __m256d l1 = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+      const __m256d l2 = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+      return _mm256_add_pd(_mm256_add_pd(l0, l1), l2);
+    };
+    alignas(32) double e[9];
+    _mm256_store_pd(e, lane_sums(a[0][0], a[0][1], a[0][2], a[1][0]));
+    _mm256_store_pd(e + 4, lane_sums(a[1][1], a[1][2], a[2][0], a[2][1]));
+    const __m128d low = _mm256_castpd256_pd128(a[2][2]);
+    e[8] = _mm_cvtsd_f64(
+        _mm_add_sd(_mm_add_sd(low, _mm_unpackhi_pd(low, low)), _mm256_extractf128_pd(a[2][2], 1)));
     for (int c = 0; c < 3; ++c)
-      for (int d = 0; d < 3; ++d) _mm256_store_pd(e[c][d], a[c][d]);
-    for (int c = 0; c < 3; ++c)
-      for (int d = 0; d < 3; ++d) L(c, d) = (e[c][d][0] + e[c][d][1]) + e[c][d][2];
+      for (int d = 0; d < 3; ++d) L(c, d) = e[3 * c + d];
     return to_sym<D>(L);
   }
   if constexpr (D == 2) {
