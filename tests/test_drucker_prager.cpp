@@ -114,5 +114,40 @@ void three_cases() {
 TEST(DruckerPrager, ThreeCases2D) { three_cases<3>(); }
 TEST(DruckerPrager, ThreeCases3D) { three_cases<6>(); }
 
+// A row's local problem in rotated coordinates (LocalDelassus::
+// rotated_problem, with AVX2 lanes in 3D) and its stress change
+// (unrotated_change) against their definitions: x_old = (lambda_N, Q^T
+// lambda_T), b = rotate(y) - W_rot x_old, and the change unrotate(x -
+// x_old) less the shift along e_0, on random blocks W = A A^T; to round-off.
+template <int S>
+void rotations(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  using VecS = Eigen::Matrix<double, S, 1>;
+  for (int t = 0; t < 2000; ++t) {
+    Eigen::Matrix<double, S, S> A;
+    for (int i = 0; i < S * S; ++i) A.data()[i] = u(rng);
+    LocalDelassus<S> W;
+    W.set(A * A.transpose());
+    VecS y, lambda, x;
+    for (int i = 0; i < S; ++i) y[i] = u(rng), lambda[i] = u(rng), x[i] = u(rng);
+    VecS x_old, b;
+    W.rotated_problem(y, lambda, x_old, b);
+    const VecS x_ref = W.rotate(lambda);
+    const VecS b_ref = W.rotate(y) - W.apply_rotated(x_ref);
+    EXPECT_LE((x_old - x_ref).norm(), 1e-14 * (1.0 + x_ref.norm())) << "case " << t;
+    EXPECT_LE((b - b_ref).norm(), 1e-13 * (1.0 + b_ref.norm())) << "case " << t;
+    const double shift = u(rng);
+    VecS change_ref = W.unrotate(x - x_old);
+    change_ref[0] -= shift;
+    EXPECT_LE((W.unrotated_change(x, x_old, shift) - change_ref).norm(),
+              1e-14 * (1.0 + change_ref.norm()))
+        << "case " << t;
+  }
+}
+
+TEST(DruckerPrager, RotatedProblem2D) { rotations<3>(21); }
+TEST(DruckerPrager, RotatedProblem3D) { rotations<6>(22); }
+
 }  // namespace
 }  // namespace sablier::test
