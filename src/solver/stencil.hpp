@@ -25,22 +25,10 @@ namespace sablier {
 namespace solver_detail {
 
 #ifdef SABLIER_STENCIL_LANES
-// 3-vectors in the first three lanes of an AVX register (the fourth zero):
-// Eigen leaves 3-vector arithmetic scalar. Loaded and stored as two and one
-// doubles, so that nothing past the vector is read or written.
-inline __m256d load3(const double* x) {
-  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(x)), _mm_load_sd(x + 2), 1);
-}
-inline void store3(double* x, __m256d v) {
-  _mm_storeu_pd(x, _mm256_castpd256_pd128(v));
-  _mm_store_sd(x + 2, _mm256_extractf128_pd(v, 1));
-}
-// All four lanes from x: the fourth is the next vector's first component,
-// read but never used (x must not be the storage's last vector).
+// Four lanes from x, of which the callers use the first three (the fourth
+// is the next entry's, read but never used: the arrays it reads carry
+// ConeProblem::kLanePadding doubles past their end).
 inline __m256d load4(const double* x) { return _mm256_loadu_pd(x); }
-// Lanes (x1, x2, x0, x3) and (x2, x0, x1, x3).
-inline __m256d rot1(__m256d x) { return _mm256_permute4x64_pd(x, 0b11001001); }
-inline __m256d rot2(__m256d x) { return _mm256_permute4x64_pd(x, 0b11010010); }
 #endif
 
 // The velocity the sweeps see at entry i, and its update: in 3D a grid
