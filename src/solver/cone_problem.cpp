@@ -538,24 +538,12 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   return report;
 }
 
-template <int D>
-SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j) {
-  // From `velocity` (the sweeps' copy of 3D is the solver's own).
-  Mat<D> L = Mat<D>::Zero();
-  for (int s = 0; s < ConeProblem<D>::NS; ++s)
-    L += p.velocity[p.node[j] + p.stencil[s]] * p.coupling[j].col(s).transpose();
-  SymVec<D> y = to_sym<D>(L);
-  y[0] += p.k[j];
-  return y / p.volume[j];
-}
-
 #define SABLIER_INSTANTIATE(D)                                                  \
   template struct ConeProblem<D>;                                               \
   template void assemble_delassus<D>(ConeProblem<D>&);                          \
   template void apply_stress_to_velocity<D>(ConeProblem<D>&);                   \
   template SolveReport solve_gauss_seidel<D>(ConeProblem<D>&, double, int, int, \
-                                             std::vector<double>*);             \
-  template SymVec<D> row_strain_rate<D>(const ConeProblem<D>&, int);
+                                             std::vector<double>*);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
 #undef SABLIER_INSTANTIATE

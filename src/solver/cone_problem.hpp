@@ -186,8 +186,4 @@ template <int D>
 SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iterations,
                                int anderson_depth = 0, std::vector<double>* history = nullptr);
 
-// gamma_j (1/s) from the current velocities, for diagnostics and tests.
-template <int D>
-SymVec<D> row_strain_rate(const ConeProblem<D>& p, int j);
-
 }  // namespace sablier

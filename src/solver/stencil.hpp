@@ -110,6 +110,12 @@ inline void pack_coupling_lines(ConeProblem<D>& p, int sand_rows) {
   }
 }
 
+// Sand row j's coupling vectors by line (3D, pack_coupling_lines).
+template <int D>
+inline const double* coupling_line(const ConeProblem<D>& p, int j) {
+  return p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
+}
+
 // (B u)_j: the symmetric part of sum_i u_i g_ji^T, in basis coordinates.
 template <int D>
 inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
@@ -127,7 +133,7 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     // L(c, d) is then (lane 0 + lane 1) + lane 2: the same fused products and
     // sums as the loop below (bit-identical results).
     const std::int64_t c0 = p.node[j];
-    const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
+    const double* gl = coupling_line<D>(p, j);
     const double* ux = p.velocity_by_axis[0].data() + c0;
     const double* uy = p.velocity_by_axis[1].data() + c0;
     const double* uz = p.velocity_by_axis[2].data() + c0;
@@ -182,7 +188,7 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     // Entry (c, d) in partial sum x (the node's place in its line), as the
     // lanes above.
     const std::int64_t c0 = p.node[j];
-    const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
+    const double* gl = coupling_line<D>(p, j);
     double e[3][3][3] = {};  // [c][d][x]
     for (int l = 0; l < 9; ++l, gl += 9) {
       const std::int64_t o = c0 + p.stencil[3 * l];
@@ -216,11 +222,11 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
     // lanes only (the fourth is the next node's, which this row does not
     // move). The loop below does the same (bit-identical results).
     const std::int64_t c0 = p.node[j];
-    const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
-    double* u[3] = {p.velocity_by_axis[0].data() + c0, p.velocity_by_axis[1].data() + c0,
-                    p.velocity_by_axis[2].data() + c0};
-    const double* m[3] = {p.inv_mass_by_axis[0].data() + c0, p.inv_mass_by_axis[1].data() + c0,
-                          p.inv_mass_by_axis[2].data() + c0};
+    const double* gl = coupling_line<D>(p, j);
+    double* uc[3] = {p.velocity_by_axis[0].data() + c0, p.velocity_by_axis[1].data() + c0,
+                     p.velocity_by_axis[2].data() + c0};
+    const double* mc[3] = {p.inv_mass_by_axis[0].data() + c0, p.inv_mass_by_axis[1].data() + c0,
+                           p.inv_mass_by_axis[2].data() + c0};
     __m256d t[3][3];
     for (int c = 0; c < 3; ++c)
       for (int d = 0; d < 3; ++d) t[c][d] = _mm256_set1_pd(T(c, d));
@@ -233,7 +239,8 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
         __m256d f = _mm256_mul_pd(t[c][c], w[c]);
         f = _mm256_fmadd_pd(t[c][c1], w[c1], f);
         f = _mm256_fmadd_pd(t[c][c2], w[c2], f);
-        _mm256_maskstore_pd(u[c] + o, three, _mm256_fmadd_pd(load4(m[c] + o), f, load4(u[c] + o)));
+        _mm256_maskstore_pd(uc[c] + o, three,
+                            _mm256_fmadd_pd(load4(mc[c] + o), f, load4(uc[c] + o)));
       }
     }
     return;
@@ -271,8 +278,7 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
     if constexpr (D == 3) {
       // T(c, c) g_c + T(c, c + 1) g_{c+1} + T(c, c + 2) g_{c+2}, as the lanes
       // above, from the coupling by lines.
-      const double* gl = p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles +
-                         9 * (s / 3) + s % 3;
+      const double* gl = coupling_line<D>(p, j) + 9 * (s / 3) + s % 3;
       const std::int64_t i = p.node[j] + o;
       for (int c = 0; c < 3; ++c) {
         double f = T(c, c) * gl[3 * c];
