@@ -157,5 +157,33 @@ TEST(Zones, BedSplitsToALine3D) {
   EXPECT_LE(std::abs(unit_rows<3>(L, 0) - unit_rows<3>(L, 1)), 51);
 }
 
+// The cuts balance costs, not rows: the same bed with its top three layers
+// costing 2 per row and the others 5 (the solver's costs of rows that start
+// without stress and with it, physics/transfer.cpp). Each thread's zone and
+// separator then cost the same to within a line's cost (51 x 5), and so do
+// the two separators, the trailing one (at the top) holding more rows.
+TEST(Zones, CutsBalanceCosts3D) {
+  std::mt19937 rng(8);
+  std::vector<std::array<int, 3>> coords;
+  std::vector<std::int64_t> key;
+  random_rows<3>(rng, {51, 11, 15}, 1.0, coords, key);
+  std::vector<int> cost(coords.size());
+  for (std::size_t j = 0; j < coords.size(); ++j) cost[j] = coords[j][2] >= 12 ? 2 : 5;
+  const ZoneLayout L = zone_layout<3>(coords, key, 500, cost);
+  ASSERT_EQ(L.zones, 2);
+  constexpr int NC = 27;
+  const auto unit_cost = [&](int u) {
+    std::int64_t c = 0;
+    for (int i = L.run_start[u * NC]; i < L.run_start[(u + 1) * NC]; ++i) c += cost[L.order[i]];
+    return c;
+  };
+  const std::int64_t line = 51 * 5;
+  EXPECT_LE(std::abs((unit_cost(0) + unit_cost(2)) - (unit_cost(1) + unit_cost(3))), line);
+  EXPECT_LE(std::abs(unit_cost(2) - unit_cost(3)), line);
+  EXPECT_EQ(unit_rows<3>(L, 2), 51 * (2 * 11 + 2));
+  EXPECT_GT(unit_rows<3>(L, 3), unit_rows<3>(L, 2));
+  // Without costs the two separators hold the same rows (BedSplitsToALine3D).
+}
+
 }  // namespace
 }  // namespace sablier

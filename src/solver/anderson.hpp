@@ -171,6 +171,10 @@ class AndersonMixer {
     partial_.assign(std::int64_t(blocks.count()) * kMaxSums, 0.0);
   }
 
+  // The history's depth (0: plain Gauss-Seidel, mix() only copies the
+  // velocities into u_before).
+  int depth() const { return m_; }
+
   // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
   // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2. Called by
   // every thread of the solver's parallel region (or serially), each with

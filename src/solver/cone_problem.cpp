@@ -397,6 +397,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::fill(p.beta.begin(), p.beta.end(), 0.0);
   add_stress_velocities<D>(p);  // warm start
   AndersonMixer<D> mixer(anderson_depth, n, blocks);
+  const bool plain = mixer.depth() <= 0;
   // One parallel region for the whole solve: a fork and join per colour
   // would cost more than a barrier (measured: about 2 us against 0.4 us on
   // 2 threads), and a 2D sweep of a few hundred rows takes tens of us. The
@@ -411,11 +412,15 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   int iterations = 0;
   double residual = 0.0;
   if (history) history->clear();
-  // The best iterate of the second half (allocated when first needed).
+  // The best iterate of the second half (allocated when first needed): its
+  // stresses and cases. Its velocities are not copied (a pass over the free
+  // nodes at every better sweep of a capped solve):
+  // going back to it, they are recomputed from its stresses, as the warm
+  // start computes them (the same velocities but for rounding).
   const int keep_from = std::max(1, max_iterations / 2);
   std::vector<SymVec<D>> best_lambda;
   std::vector<DPCase> best_state;
-  std::vector<Vec<D>> best_u;
+  bool went_back = false;
   SpinBarrier barrier;
 #pragma omp parallel num_threads(team_size(p))
   {
@@ -460,13 +465,16 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       order.walk(
           team.rank, [&](int j0, int j1) { update_rows<D>(p, j0, j1, queue); },
           [&] { queue.flush(p); }, [&] { team.sync(); });
-      // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2.
+      // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2. Without mixing, u_prev
+      // takes u^k here for the next sweep (what the mixer would do in a pass
+      // of its own).
       double sums[2];
       deterministic_sums(team, blocks, 2, partial, sums, [&](std::int64_t q, double* acc) {
         const Vec<D> u = velocity_at<D>(p, free[q]);
         const Vec<D> a = u - u_prev[q], b = u - u_free[q];
         acc[0] += a.dot(weight[q].cwiseProduct(a));
         acc[1] += b.dot(weight[q].cwiseProduct(b));
+        if (plain) u_prev[q] = u;
       });
       const double r = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
       my_iterations = it;
@@ -484,7 +492,6 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           if (team.rank == 0) {
             best_lambda.resize(n);
             best_state.resize(n);
-            best_u.resize(nf);
           }
           team.sync();
           allocated = true;
@@ -495,12 +502,12 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
             best_state[j] = p.state[j];
           }
         });
-        for (std::int64_t q = q0; q < q1; ++q) best_u[q] = velocity_at<D>(p, free[q]);
       }
-      if (it < max_iterations)
+      if (it < max_iterations && !plain)
         mixer.mix(team, p, free, u_prev, weight, sums[0], own_rows, mix_state);
     }
-    if (my_residual > tolerance && best < my_residual) {
+    const bool restored = my_residual > tolerance && best < my_residual;
+    if (restored) {
       // Stopped at the cap on a worse iterate: go back to the best one.
       team.sync();
       own_rows([&](int j0, int j1, int) {
@@ -509,15 +516,17 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           p.state[j] = best_state[j];
         }
       });
-      for (std::int64_t q = q0; q < q1; ++q) set_velocity_at<D>(p, free[q], best_u[q]);
+      for (std::int64_t q = q0; q < q1; ++q) set_velocity_at<D>(p, free[q], u_free[q]);
       my_residual = best;
     }
 #pragma omp master
     {
       iterations = my_iterations;
       residual = my_residual;
+      went_back = restored;
     }
   }
+  if (went_back) add_stress_velocities<D>(p);  // the best iterate's velocities
   velocities_from_axes<D>(p);
   report.iterations = iterations;
   report.residual = residual;

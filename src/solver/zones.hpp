@@ -15,9 +15,10 @@
 // of a zone and of the separators on either side of it touch the same
 // velocities, and the separators always come after the zones: every thread
 // count updates rows that share a velocity in the same order, so the result
-// does not depend on it. Each thread's zones and separators hold about as
-// many rows as the others', so the threads wait for each other little, and
-// only twice a sweep (before the separators, and after them).
+// does not depend on it. Each thread's zones and separators cost about as
+// much as the others' (rows weighted by the caller's estimate of their
+// time), so the threads wait for each other little, and only twice a sweep
+// (before the separators, and after them).
 #pragma once
 
 #include <algorithm>
@@ -55,14 +56,15 @@ namespace zone_detail {
 // collapse, 17 layers: 4 zones of 2-4 layers).
 constexpr int kMinZoneLayers = 4;
 
-// The separators' lines over the lines' row counts `count`: separator s is
-// lines [first[s], last[s]), `width` lines for s < z - 1 (between zones s
-// and s + 1), the trailing one (s = z - 1) the lines after the last zone.
-// Each zone with the separator after it holds about n / z rows and each
-// separator about as many rows as the others (z = 1: no rows), so that the
-// threads' zones and their separators balance as the lines allow. A zone
-// holds at least `min_zone` lines; false when z zones do not fit.
-inline bool place_separators(const std::vector<int>& count, int z, int width, int min_zone,
+// The separators' lines over the lines' costs `count` (the sums of their
+// rows' costs): separator s is lines [first[s], last[s]), `width` lines for
+// s < z - 1 (between zones s and s + 1), the trailing one (s = z - 1) the
+// lines after the last zone. Each zone with the separator after it costs
+// about n / z (n the total) and each separator about as much as the others
+// (z = 1: nothing), so that the threads' zones and their separators balance
+// as the lines allow. A zone holds at least `min_zone` lines; false when z
+// zones do not fit.
+inline bool place_separators(const std::vector<std::int64_t>& count, int z, int width, int min_zone,
                              std::vector<int>& first, std::vector<int>& last) {
   const int lines = static_cast<int>(count.size());
   std::vector<std::int64_t> before(lines + 1, 0);  // rows in lines [0, k)
@@ -103,9 +105,12 @@ inline bool place_separators(const std::vector<int>& count, int z, int width, in
 // rows each: Z is the largest power of two up to rows / zone_rows (so that
 // 2, 4, 8 ... threads share them evenly) that the extent along the longest
 // axis allows; zone_rows = 0 or fewer than 2 zone_rows rows give one zone.
+// The cuts balance the rows' costs cost[j] (positive; empty: each row
+// costs 1), the time a sweep spends on them as far as the caller can tell.
 template <int D>
 ZoneLayout zone_layout(const std::vector<std::array<int, D>>& coords,
-                       const std::vector<std::int64_t>& key, int zone_rows) {
+                       const std::vector<std::int64_t>& key, int zone_rows,
+                       const std::vector<int>& cost = {}) {
   constexpr int NC = ipow(3, D);
   const int n = static_cast<int>(coords.size());
   ZoneLayout layout;
@@ -139,8 +144,8 @@ ZoneLayout zone_layout(const std::vector<std::array<int, D>>& coords,
   };
   const int width = 2 * per_layer + 2;
   const int min_zone = zone_detail::kMinZoneLayers * per_layer;
-  std::vector<int> count((hi[axis] - lo[axis] + 1) * per_layer, 0);
-  for (int j = 0; j < n; ++j) ++count[line_of(j)];
+  std::vector<std::int64_t> count((hi[axis] - lo[axis] + 1) * per_layer, 0);
+  for (int j = 0; j < n; ++j) count[line_of(j)] += cost.empty() ? 1 : cost[j];
   int z = 1;
   while (zone_rows > 0 && static_cast<std::int64_t>(2) * z * zone_rows <= n) z *= 2;
   std::vector<int> first, last;
