@@ -149,5 +149,87 @@ void rotations(unsigned seed) {
 TEST(DruckerPrager, RotatedProblem2D) { rotations<3>(21); }
 TEST(DruckerPrager, RotatedProblem3D) { rotations<6>(22); }
 
+// The sweeps' first try (separate_or_stick_unrotated, with the block's first
+// row and inverse from LocalDelassus::unrotated) against the rotated steps 1
+// and 2 (rotated_problem, the cohesion's shift, solve_without_slide,
+// unrotated_change): on random blocks W = A A^T, stresses, strain rates,
+// shifts and apertures, the unrotated inverse times W is the identity, and
+// both give the same case and the same stress change to round-off (times
+// W's condition number), or both leave the row to the slide solve. Cases within round-off of a
+// case's border (b_N or the stick stress's distance to the cone below 1e-9 of its scale) may go
+// either way and are skipped.
+template <int S>
+void unrotated_cases(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_real_distribution<double> mu(0.05, 1.5);
+  using VecS = Eigen::Matrix<double, S, 1>;
+  int counts[3] = {0, 0, 0};  // separation, stick, neither
+  for (int t = 0; t < 5000; ++t) {
+    Eigen::Matrix<double, S, S> A;
+    for (int i = 0; i < S * S; ++i) A.data()[i] = u(rng);
+    const Eigen::Matrix<double, S, S> Wm = A * A.transpose();
+    LocalDelassus<S> W;
+    W.set(Wm);
+    VecS w0;
+    Eigen::Matrix<double, S, S> inv;
+    W.unrotated(w0, inv);
+    const double scale = Wm.norm();
+    ASSERT_LE((inv * Wm - Eigen::Matrix<double, S, S>::Identity()).norm(),
+              1e-9 * scale * inv.norm())
+        << "case " << t;
+    ASSERT_LE((w0 - Wm.row(0).transpose()).norm(), 1e-12 * scale) << "case " << t;
+    VecS y, lambda;
+    for (int i = 0; i < S; ++i) y[i] = u(rng), lambda[i] = u(rng);
+    lambda[0] = std::abs(lambda[0]);
+    const double shift = t % 4 == 0 ? 0.0 : 0.3 * std::abs(u(rng));
+    const double a = mu(rng);
+    if (t % 2 == 1) {
+      // Half the cases aim inside the cone: y = W (lambda - lambda*) with
+      // lambda* + shift e_0 within it, which sticks unless b_N >= 0.
+      VecS target;
+      for (int i = 0; i < S; ++i) target[i] = u(rng);
+      target[0] = std::abs(target[0]) + 0.1;
+      target.template tail<S - 1>() *=
+          0.9 * a * (target[0] + shift) / target.template tail<S - 1>().norm();
+      y = Wm * (lambda - target);
+    }
+    // The rotated steps, as the sweep did them before.
+    VecS x_old, b, x;
+    W.rotated_problem(y, lambda, x_old, b);
+    VecS e0 = VecS::Zero();
+    e0[0] = shift;
+    b -= W.apply_rotated(e0);
+    DPCase ref_case;
+    const bool ref = solve_without_slide<S>(W, b, a, x, ref_case);
+    // Near a border: skip.
+    const VecS stick = -(inv * (W.unrotate(b)));
+    const double xn = stick[0], tn = stick.template tail<S - 1>().norm();
+    const double size = 1.0 + std::abs(b[0]) + stick.norm();
+    if (std::abs(b[0]) < 1e-9 * size || std::abs(tn - a * xn) < 1e-9 * size) continue;
+    VecS dl;
+    DPCase got_case;
+    const bool got = separate_or_stick_unrotated<S>(w0, inv, lambda, y, shift, a, dl, got_case);
+    ASSERT_EQ(got, ref) << "case " << t;
+    if (!got) {
+      ++counts[2];
+      continue;
+    }
+    ASSERT_EQ(got_case, ref_case) << "case " << t;
+    ++counts[static_cast<int>(got_case)];
+    const VecS dl_ref = W.unrotated_change(x, x_old, shift);
+    // Both are W^{-1} applied to the same data, rounded differently: to
+    // round-off amplified by W's condition number.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, S, S>> eig(Wm);
+    const double cond = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+    EXPECT_LE((dl - dl_ref).norm(), 1e-14 * cond * (1.0 + dl_ref.norm() + lambda.norm()))
+        << "case " << t << " condition number " << cond;
+  }
+  for (int c = 0; c < 3; ++c) EXPECT_GT(counts[c], 300) << "outcome " << c << " rarely exercised";
+}
+
+TEST(DruckerPrager, UnrotatedSeparationAndStick2D) { unrotated_cases<3>(31); }
+TEST(DruckerPrager, UnrotatedSeparationAndStick3D) { unrotated_cases<6>(32); }
+
 }  // namespace
 }  // namespace sablier::test

@@ -171,14 +171,23 @@ struct SlideQueue {
   }
 };
 
-// Sand row j's local problem (METHOD.md step 5) in rotated coordinates: its
-// stress x_old and b, the strain rate with x_j = 0 (shifted by the cohesion).
+// Sand row j's strain rate at its current stress (METHOD.md step 5):
+// y = (B u + k_j e_0) / V_j, from the row's gather.
 template <int D>
-inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymVec<D>& b) {
-  const LocalDelassus<sym_size(D)>& W = p.delassus[j];
+inline SymVec<D> row_strain(const ConeProblem<D>& p, int j) {
   SymVec<D> y = apply_B<D>(p, j);
   y[0] += p.k[j];
   y *= p.inv_volume[j];
+  return y;
+}
+
+// Sand row j's local problem in rotated coordinates from its strain rate y:
+// its stress x_old and b, the strain rate with x_j = 0 (shifted by the
+// cohesion).
+template <int D>
+inline void local_problem(const ConeProblem<D>& p, int j, const SymVec<D>& y, SymVec<D>& x_old,
+                          SymVec<D>& b) {
+  const LocalDelassus<sym_size(D)>& W = p.delassus[j];
   W.rotated_problem(y, p.lambda[j], x_old, b);
   // Cohesion: the cone's apex sits at lambda = -shift e_0; solve for the
   // shifted stress lambda + shift e_0 (METHOD.md section 1).
@@ -190,21 +199,34 @@ inline void local_problem(const ConeProblem<D>& p, int j, SymVec<D>& x_old, SymV
   }
 }
 
+// Separation and stick for sand row j without rotations
+// (separate_or_stick_unrotated), from its strain rate y.
+template <int D>
+inline bool separate_or_stick(const ConeProblem<D>& p, int j, const SymVec<D>& y, SymVec<D>& dl,
+                              DPCase& result) {
+  const auto& U = p.unrotated[j];
+  return separate_or_stick_unrotated<sym_size(D)>(U.first_row, U.inverse, p.lambda[j], y,
+                                                  p.cohesion[j], p.aperture[j], dl, result);
+}
+
 // Exact local updates of rows [begin, end), all of one run (rows of one
 // colour have disjoint stencils, so their order does not matter). Sand rows
-// go eight at a time: first every row's local problem (gather and
-// rotation), a loop without branches whose loads and arithmetic overlap
-// from row to row; then each row's case, those that separate or stick
-// updated and those that slide queued for a batched slide solve
-// (slide_batch.hpp), done when the queue is full and by the caller at the
-// end of each group of independent rows (SweepOrder::walk). In 3D the
-// separation and stick candidates of the eight rows come in a pass of their
-// own and the scatters in another, after the cases: eight independent
-// chains of arithmetic per pass, which the core overlaps (4-6% less time
-// per 3D sweep; in 2D, whose rows cost a third as much, it cost 3-5%,
-// docs/benchmarks.md, twenty-first session). Either way, the same results.
-// Contact rows (own colours) are updated one by one, in order, with the
-// queue empty.
+// go eight at a time: first every row's gather, a loop without branches
+// whose loads and arithmetic overlap from row to row; then each row's case:
+// separation and stick tried without rotations (separate_or_stick) unless
+// the row slid in the last sweep (a slide costs the rotated problem anyway,
+// and mostly slides again), then, for the rows neither holds or that slid,
+// the rotated problem (local_problem), whose separation, stick,
+// frictionless or round-off cases are solved at once and whose slides are
+// queued for a batched slide solve (slide_batch.hpp), done when the queue
+// is full and by the caller at the end of each group of independent rows
+// (SweepOrder::walk). In 3D the unrotated candidates of the eight rows come
+// in a pass of their own and the scatters in another, after the cases:
+// eight independent chains of arithmetic per pass, which the core overlaps
+// (4-6% less time per 3D sweep; in 2D, whose rows cost a third as much, it
+// cost 3-5%, docs/benchmarks.md, twenty-first session). Either way, the
+// same results. Contact rows (own colours) are updated one by one, in
+// order, with the queue empty.
 template <int D>
 inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue) {
   constexpr int SD = sym_size(D);
@@ -212,48 +234,50 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
   constexpr bool kPasses = D == 3;
   for (int j = begin; j < std::min(end, p.first_contact); j += kChunk) {
     const int n = std::min(kChunk, std::min(end, p.first_contact) - j);
-    SymVec<D> x_old[kChunk], b[kChunk], x[kChunk];
+    SymVec<D> y[kChunk], dl[kChunk];
     DPCase result[kChunk];
     bool solved[kChunk];
-    for (int r = 0; r < n; ++r) local_problem<D>(p, j + r, x_old[r], b[r]);
+    for (int r = 0; r < n; ++r) y[r] = row_strain<D>(p, j + r);
     if constexpr (kPasses) {
-      for (int r = 0; r < n; ++r) {
-        const LocalDelassus<SD>& W = p.delassus[j + r];
-        solved[r] =
-            W.degenerate || solve_without_slide<SD>(W, b[r], p.aperture[j + r], x[r], result[r]);
-      }
+      for (int r = 0; r < n; ++r)
+        solved[r] = p.unrotated[j + r].degenerate ||
+                    (p.state[j + r] != DPCase::Slide &&
+                     separate_or_stick<D>(p, j + r, y[r], dl[r], result[r]));
     }
     for (int r = 0; r < n; ++r) {
       const int row = j + r;
-      const LocalDelassus<SD>& W = p.delassus[row];
-      if (W.degenerate) {
+      if (p.unrotated[row].degenerate) {
         p.state[row] = DPCase::Inactive;
         solved[r] = false;  // no change below
         continue;
       }
       if constexpr (!kPasses)
-        solved[r] = solve_without_slide<SD>(W, b[r], p.aperture[row], x[r], result[r]);
-      if (solved[r]) {
-        p.state[row] = result[r];
-        p.beta[row] = 0.0;
-        if constexpr (kPasses) {
-          x[r] = W.unrotated_change(x[r], x_old[r], p.cohesion[row]);
-        } else {
-          finish_row<D>(p, row, x[r], x_old[r], p.cohesion[row]);
+        solved[r] =
+            p.state[row] != DPCase::Slide && separate_or_stick<D>(p, row, y[r], dl[r], result[r]);
+      if (!solved[r]) {
+        const LocalDelassus<SD>& W = p.delassus[row];
+        SymVec<D> x_old, b, x;
+        local_problem<D>(p, row, y[r], x_old, b);
+        if (!solve_without_slide<SD>(W, b, p.aperture[row], x, result[r])) {
+          const int l = queue.batch.add(W, b, p.aperture[row], p.beta[row]);
+          queue.row[l] = row;
+          queue.x_old[l] = x_old;
+          queue.shift[l] = p.cohesion[row];
+          if (queue.batch.full()) queue.flush(p);
+          continue;
         }
-        continue;
+        dl[r] = W.unrotated_change(x, x_old, p.cohesion[row]);
+        solved[r] = true;
       }
-      const int l = queue.batch.add(W, b[r], p.aperture[row], p.beta[row]);
-      queue.row[l] = row;
-      queue.x_old[l] = x_old[r];
-      queue.shift[l] = p.cohesion[row];
-      if (queue.batch.full()) queue.flush(p);
+      p.state[row] = result[r];
+      p.beta[row] = 0.0;
+      if constexpr (!kPasses) apply_change<D>(p, row, dl[r]);
     }
     if constexpr (kPasses) {
       for (int r = 0; r < n; ++r) {
-        // x[r] now holds the stress change of a row solved above (the
-        // queued ones are updated by the flush).
-        if (solved[r]) apply_change<D>(p, j + r, x[r]);
+        // dl[r] holds the stress change of a row solved above (the queued
+        // ones are updated by the flush).
+        if (solved[r]) apply_change<D>(p, j + r, dl[r]);
       }
     }
   }
@@ -320,6 +344,12 @@ void assemble_delassus(ConeProblem<D>& p) {
       if (p.other_body(c) >= 0) add_body(p.other_body(c), p.contact_other_arm[c]);
     }
     p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
+  }
+  p.unrotated.resize(sand);
+#pragma omp parallel for schedule(static)
+  for (int j = 0; j < sand; ++j) {
+    p.delassus[j].unrotated(p.unrotated[j].first_row, p.unrotated[j].inverse);
+    p.unrotated[j].degenerate = p.delassus[j].degenerate;
   }
   pack_coupling_lines<D>(p, sand);
   p.inv_volume.resize(sand);
@@ -395,6 +425,10 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     u_free[q] = velocity_at<D>(p, i);  // before any stress acts
   }
   std::fill(p.beta.begin(), p.beta.end(), 0.0);
+  // The first sweep tries every row without rotations (update_rows): the
+  // cases of an earlier step, which a resumed run does not have, must not
+  // steer it.
+  std::fill(p.state.begin(), p.state.end(), DPCase::Separation);
   add_stress_velocities<D>(p);  // warm start
   AndersonMixer<D> mixer(anderson_depth, n, blocks);
   const bool plain = mixer.depth() <= 0;

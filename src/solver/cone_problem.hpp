@@ -87,6 +87,16 @@ struct ConeProblem {
   std::vector<double> cohesion;       // apex shift along e_0, Pa (cone on lambda + shift e_0)
   std::vector<SymVec<D>> lambda;      // in: warm start; out: the solution, Pa
   std::vector<LocalDelassus<SD>> delassus;
+  // Per sand row, its block's first row and inverse unrotated
+  // (LocalDelassus::unrotated; assemble_delassus fills it): the sweeps try
+  // separation and stick with these, without rotating the row's stress and
+  // strain rate, and read `delassus` only for rows that slide.
+  struct Unrotated {
+    SymVec<D> first_row;
+    Eigen::Matrix<double, SD, SD> inverse;
+    bool degenerate;  // as delassus[j].degenerate
+  };
+  std::vector<Unrotated> unrotated;
   std::vector<DPCase> state;
   std::vector<double> beta;           // plastic multiplier of the last local solve (guess for the next)
 

@@ -82,6 +82,29 @@ struct LocalDelassus {
     inv_schur = 1.0 / (w_nn - c_inv_ev.dot(c));
   }
 
+  // W as this block models it (regularised, eigenvalues clamped), unrotated:
+  // its first row and its inverse, for UnrotatedBlock. In rotated
+  // coordinates W^{-1} is [s, -s (c/ev)^T; -s (c/ev), diag(1/ev) + s (c/ev)
+  // (c/ev)^T] with s = inv_schur (the Schur complement's inverse), and
+  // unrotated R W^{-1} R^T with R = diag(1, Q).
+  void unrotated(VecS& first_row, MatS& inverse) const {
+    first_row.setZero();
+    inverse.setZero();
+    if (degenerate) return;
+    first_row[0] = w_nn;
+    first_row.template tail<T>() = Q * c;
+    MatS m;
+    m(0, 0) = inv_schur;
+    m.template bottomLeftCorner<T, 1>() = -inv_schur * c_inv_ev;
+    m.template topRightCorner<1, T>() = -inv_schur * c_inv_ev.transpose();
+    m.template bottomRightCorner<T, T>() = inv_schur * c_inv_ev * c_inv_ev.transpose();
+    m.template bottomRightCorner<T, T>().diagonal() += inv_ev;
+    MatS r = MatS::Zero();
+    r(0, 0) = 1.0;
+    r.template bottomRightCorner<T, T>() = Q;
+    inverse = r * m * r.transpose();
+  }
+
   VecS rotate(const VecS& x) const {
     VecS r;
     r[0] = x[0];
@@ -285,6 +308,49 @@ inline bool solve_without_slide(const LocalDelassus<S>& W, const Eigen::Matrix<d
     return true;
   }
   x.setZero();
+  return false;
+}
+
+// Steps 1 and 2 (separation, stick) without rotations, from the block's
+// first row w0 and inverse Winv unrotated (LocalDelassus::unrotated), the
+// row's stress lambda, its strain rate y at that stress and the cone's apex
+// shift s e_0 (cohesion): with b_N = y_N - w0 . (lambda + s e_0) (rotations
+// leave e_0 alone), the stress separates where b_N >= 0 (change -lambda -
+// s e_0); else the stick stress is lambda - Winv y (the rotated stick
+// solution x = -W^{-1} b, unrotated), which holds where it lies in the cone,
+// |t| <= aperture (n + s) (rotations keep |t|). True with the stress change
+// dl and the case; false where neither holds or the row is frictionless
+// (aperture <= 0), for the rotated solve. Agrees with the rotated steps to
+// round-off (tests/test_drucker_prager.cpp).
+template <int S>
+inline bool separate_or_stick_unrotated(const Eigen::Matrix<double, S, 1>& w0,
+                                        const Eigen::Matrix<double, S, S>& inverse,
+                                        const Eigen::Matrix<double, S, 1>& lambda,
+                                        const Eigen::Matrix<double, S, 1>& y, double shift,
+                                        double aperture, Eigen::Matrix<double, S, 1>& dl,
+                                        DPCase& result) {
+  if (!(aperture > 0.0)) return false;
+  double bn = std::fma(-w0[0], shift, y[0]);
+  for (int k = 0; k < S; ++k) bn = std::fma(-w0[k], lambda[k], bn);
+  if (bn >= 0.0) {
+    dl = -lambda;
+    dl[0] -= shift;
+    result = DPCase::Separation;
+    return true;
+  }
+  Eigen::Matrix<double, S, 1> m = inverse.col(0) * y[0];
+  for (int k = 1; k < S; ++k) m += inverse.col(k) * y[k];
+  dl = -m;
+  const double xn = lambda[0] - m[0] + shift;
+  double tt = 0.0;
+  for (int k = 1; k < S; ++k) {
+    const double t = lambda[k] - m[k];
+    tt = std::fma(t, t, tt);
+  }
+  if (xn > 0.0 && tt <= aperture * aperture * xn * xn) {
+    result = DPCase::Stick;
+    return true;
+  }
   return false;
 }
 
