@@ -292,6 +292,7 @@ void assemble_delassus(ConeProblem<D>& p) {
   const int n = p.rows();
   // The sand rows' blocks (contact rows get theirs below).
   const int sand = std::min(p.first_contact, n);
+  p.unrotated.resize(sand);
 #pragma omp parallel for schedule(static)
   for (int j = 0; j < sand; ++j) {
     const auto& g = p.coupling[j];
@@ -309,6 +310,8 @@ void assemble_delassus(ConeProblem<D>& p) {
       W.col(c) = to_sym<D>(L) / p.volume[j];
     }
     p.delassus[j].set(0.5 * (W + W.transpose()));
+    p.delassus[j].unrotated(p.unrotated[j].first_row, p.unrotated[j].inverse);
+    p.unrotated[j].degenerate = p.delassus[j].degenerate;
   }
   // Contact rows: W_c = w F^T M^{-1} F on the row's own node, w = |g_jj|.
   const int first = std::min(p.first_contact, n);
@@ -344,12 +347,6 @@ void assemble_delassus(ConeProblem<D>& p) {
       if (p.other_body(c) >= 0) add_body(p.other_body(c), p.contact_other_arm[c]);
     }
     p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
-  }
-  p.unrotated.resize(sand);
-#pragma omp parallel for schedule(static)
-  for (int j = 0; j < sand; ++j) {
-    p.delassus[j].unrotated(p.unrotated[j].first_row, p.unrotated[j].inverse);
-    p.unrotated[j].degenerate = p.delassus[j].degenerate;
   }
   pack_coupling_lines<D>(p, sand);
   p.inv_volume.resize(sand);

@@ -86,23 +86,25 @@ struct LocalDelassus {
   // its first row and its inverse, for UnrotatedBlock. In rotated
   // coordinates W^{-1} is [s, -s (c/ev)^T; -s (c/ev), diag(1/ev) + s (c/ev)
   // (c/ev)^T] with s = inv_schur (the Schur complement's inverse), and
-  // unrotated R W^{-1} R^T with R = diag(1, Q).
+  // unrotated R W^{-1} R^T with R = diag(1, Q). Exactly symmetric.
   void unrotated(VecS& first_row, MatS& inverse) const {
     first_row.setZero();
     inverse.setZero();
     if (degenerate) return;
     first_row[0] = w_nn;
     first_row.template tail<T>() = Q * c;
-    MatS m;
-    m(0, 0) = inv_schur;
-    m.template bottomLeftCorner<T, 1>() = -inv_schur * c_inv_ev;
-    m.template topRightCorner<1, T>() = -inv_schur * c_inv_ev.transpose();
-    m.template bottomRightCorner<T, T>() = inv_schur * c_inv_ev * c_inv_ev.transpose();
-    m.template bottomRightCorner<T, T>().diagonal() += inv_ev;
-    MatS r = MatS::Zero();
-    r(0, 0) = 1.0;
-    r.template bottomRightCorner<T, T>() = Q;
-    inverse = r * m * r.transpose();
+    // By blocks: with q = Q (c/ev), W^{-1} = [s, -s q^T; -s q, Q diag(1/ev)
+    // Q^T + s q q^T] (a third of the products of R W^{-1} R^T in full).
+    const VecT q = Q * c_inv_ev;
+    inverse(0, 0) = inv_schur;
+    inverse.template bottomLeftCorner<T, 1>() = -inv_schur * q;
+    inverse.template topRightCorner<1, T>() = -inv_schur * q.transpose();
+    for (int a = 0; a < T; ++a)
+      for (int b = 0; b <= a; ++b) {
+        double v = inv_schur * q[a] * q[b];
+        for (int k = 0; k < T; ++k) v += Q(a, k) * inv_ev[k] * Q(b, k);
+        inverse(1 + a, 1 + b) = inverse(1 + b, 1 + a) = v;
+      }
   }
 
   VecS rotate(const VecS& x) const {
