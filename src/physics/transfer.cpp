@@ -76,7 +76,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
   // stays separated (no stress before or after its update) skips its
   // scatter, the larger half of a row's time; on the benchmark's 3D bed
   // (docs/benchmarks.md), whose top layers separate, counting rows alone
-  // left the thread whose separator held them idle for 6% of a sweep.
+  // left the thread whose separator held them idle for about 7% of a sweep.
   std::vector<int> cost(nodes.size());
   for (std::size_t r = 0; r < nodes.size(); ++r)
     cost[r] = warm_lambda_[nodes[r]].squaredNorm() > 0.0 ? 5 : 2;

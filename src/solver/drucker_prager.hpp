@@ -83,7 +83,7 @@ struct LocalDelassus {
   }
 
   // W as this block models it (regularised, eigenvalues clamped), unrotated:
-  // its first row and its inverse, for UnrotatedBlock. In rotated
+  // its first row and its inverse, for ConeProblem::unrotated. In rotated
   // coordinates W^{-1} is [s, -s (c/ev)^T; -s (c/ev), diag(1/ev) + s (c/ev)
   // (c/ev)^T] with s = inv_schur (the Schur complement's inverse), and
   // unrotated R W^{-1} R^T with R = diag(1, Q). Exactly symmetric.
