@@ -119,11 +119,9 @@ inline const double* coupling_line(const ConeProblem<D>& p, int j) {
 // (B u)_j: the symmetric part of sum_i u_i g_ji^T, in basis coordinates.
 template <int D>
 inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
-  const Vec<D>* u = p.velocity.data() + p.node[j];
-  const auto& g = p.coupling[j];
   Mat<D> L = Mat<D>::Zero();
-#ifdef SABLIER_STENCIL_LANES
   if constexpr (D == 3) {
+#ifdef SABLIER_STENCIL_LANES
     // Lines in lanes: for each of the stencil's 9 lines (three nodes along
     // x, consecutive indices) one four-lane load of each velocity component
     // (ConeProblem::velocity_by_axis) and of each coupling component
@@ -165,26 +163,7 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
         _mm_add_sd(_mm_add_sd(low, _mm_unpackhi_pd(low, low)), _mm256_extractf128_pd(a[2][2], 1)));
     for (int c = 0; c < 3; ++c)
       for (int d = 0; d < 3; ++d) L(c, d) = e[3 * c + d];
-    return to_sym<D>(L);
-  }
-  if constexpr (D == 2) {
-    // L = (L00, L10, L01, L11) in one register: u_s = (u0, u1) twice
-    // against (g0, g0, g1, g1), in stencil order, the same fused products and
-    // sums as the loop below (bit-identical results).
-    const double* gs = g.data();
-    __m256d c = _mm256_setzero_pd();
-    for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 2) {
-      const __m256d v =
-          _mm256_broadcast_pd(reinterpret_cast<const __m128d*>(u[p.stencil[s]].data()));
-      const __m256d w =
-          _mm256_permute_pd(_mm256_broadcast_pd(reinterpret_cast<const __m128d*>(gs)), 0b1100);
-      c = _mm256_fmadd_pd(v, w, c);
-    }
-    _mm256_storeu_pd(L.data(), c);
-    return to_sym<D>(L);
-  }
-#endif
-  if constexpr (D == 3) {
+#else
     // Entry (c, d) in partial sum x (the node's place in its line), as the
     // lanes above.
     const std::int64_t c0 = p.node[j];
@@ -199,9 +178,29 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     }
     for (int c = 0; c < 3; ++c)
       for (int d = 0; d < 3; ++d) L(c, d) = (e[c][d][0] + e[c][d][1]) + e[c][d][2];
+#endif
   } else {
+    // 2D: the velocities and couplings as the problem stores them.
+    const Vec<D>* u = p.velocity.data() + p.node[j];
+    const auto& g = p.coupling[j];
+#ifdef SABLIER_STENCIL_LANES
+    // L = (L00, L10, L01, L11) in one register: u_s = (u0, u1) twice
+    // against (g0, g0, g1, g1), in stencil order, the same fused products and
+    // sums as the loop below (bit-identical results).
+    const double* gs = g.data();
+    __m256d c = _mm256_setzero_pd();
+    for (int s = 0; s < ConeProblem<D>::NS; ++s, gs += 2) {
+      const __m256d v =
+          _mm256_broadcast_pd(reinterpret_cast<const __m128d*>(u[p.stencil[s]].data()));
+      const __m256d w =
+          _mm256_permute_pd(_mm256_broadcast_pd(reinterpret_cast<const __m128d*>(gs)), 0b1100);
+      c = _mm256_fmadd_pd(v, w, c);
+    }
+    _mm256_storeu_pd(L.data(), c);
+#else
     for (int s = 0; s < ConeProblem<D>::NS; ++s)
       L.noalias() += u[p.stencil[s]] * g.col(s).transpose();
+#endif
   }
   return to_sym<D>(L);
 }
@@ -210,11 +209,8 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
 template <int D>
 inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
   const Mat<D> T = from_sym<D>(dlambda);
-  Vec<D>* u = p.velocity.data() + p.node[j];
-  const Vec<D>* im = p.inv_mass.data() + p.node[j];
-  const auto& g = p.coupling[j];
-#ifdef SABLIER_STENCIL_LANES
   if constexpr (D == 3) {
+#ifdef SABLIER_STENCIL_LANES
     // Lines in lanes, as in apply_B: for each line the three nodes' x, y and
     // z components of T g_s, each from the coupling's three component loads
     // (T(c, c) g_c, then T(c, c + 1) g_{c+1} and T(c, c + 2) g_{c+2} fused,
@@ -243,9 +239,28 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
                             _mm256_fmadd_pd(load4(mc[c] + o), f, load4(uc[c] + o)));
       }
     }
-    return;
-  }
-  if constexpr (D == 2) {
+#else
+    for (int s = 0; s < ConeProblem<D>::NS; ++s) {
+      // T(c, c) g_c + T(c, c + 1) g_{c+1} + T(c, c + 2) g_{c+2}, as the lanes
+      // above, from the coupling by lines.
+      const double* gl = coupling_line<D>(p, j) + 9 * (s / 3) + s % 3;
+      const std::int64_t i = p.node[j] + p.stencil[s];
+      for (int c = 0; c < 3; ++c) {
+        double f = T(c, c) * gl[3 * c];
+        f = std::fma(T(c, (c + 1) % 3), gl[3 * ((c + 1) % 3)], f);
+        f = std::fma(T(c, (c + 2) % 3), gl[3 * ((c + 2) % 3)], f);
+        double& ui = p.velocity_by_axis[c][i];
+        ui = std::fma(p.inv_mass_by_axis[c][i], f, ui);
+      }
+    }
+#endif
+  } else {
+    // 2D: the velocities, inverse masses and couplings as the problem
+    // stores them.
+    Vec<D>* u = p.velocity.data() + p.node[j];
+    const Vec<D>* im = p.inv_mass.data() + p.node[j];
+    const auto& g = p.coupling[j];
+#ifdef SABLIER_STENCIL_LANES
     // Two stencil nodes per register: T g_s = T_0 g_s[0] + T_1 g_s[1] for
     // s and s + 1 at once (the same products and sums as the loop below).
     const __m256d t0 = _mm256_broadcast_pd(reinterpret_cast<const __m128d*>(T.col(0).data())),
@@ -270,26 +285,12 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
       _mm_storeu_pd(u[o].data(),
                     _mm_fmadd_pd(_mm_loadu_pd(im[o].data()), f, _mm_loadu_pd(u[o].data())));
     }
-    return;
-  }
-#endif
-  for (int s = 0; s < ConeProblem<D>::NS; ++s) {
-    const std::int64_t o = p.stencil[s];
-    if constexpr (D == 3) {
-      // T(c, c) g_c + T(c, c + 1) g_{c+1} + T(c, c + 2) g_{c+2}, as the lanes
-      // above, from the coupling by lines.
-      const double* gl = coupling_line<D>(p, j) + 9 * (s / 3) + s % 3;
-      const std::int64_t i = p.node[j] + o;
-      for (int c = 0; c < 3; ++c) {
-        double f = T(c, c) * gl[3 * c];
-        f = std::fma(T(c, (c + 1) % 3), gl[3 * ((c + 1) % 3)], f);
-        f = std::fma(T(c, (c + 2) % 3), gl[3 * ((c + 2) % 3)], f);
-        double& ui = p.velocity_by_axis[c][i];
-        ui = std::fma(p.inv_mass_by_axis[c][i], f, ui);
-      }
-    } else {
+#else
+    for (int s = 0; s < ConeProblem<D>::NS; ++s) {
+      const std::int64_t o = p.stencil[s];
       u[o] += im[o].cwiseProduct(T * g.col(s));
     }
+#endif
   }
 }
 
