@@ -293,6 +293,9 @@ void assemble_delassus(ConeProblem<D>& p) {
   // The sand rows' blocks (contact rows get theirs below).
   const int sand = std::min(p.first_contact, n);
   p.unrotated.resize(sand);
+  // First, as it rounds the 3D couplings to the single precision the sweeps
+  // read them in: the blocks below are those of the operator they apply.
+  pack_coupling_lines<D>(p, sand);
 #pragma omp parallel for schedule(static)
   for (int j = 0; j < sand; ++j) {
     const auto& g = p.coupling[j];
@@ -348,7 +351,6 @@ void assemble_delassus(ConeProblem<D>& p) {
     }
     p.contact_delassus[j - first].set(0.5 * (Wc + Wc.transpose()));
   }
-  pack_coupling_lines<D>(p, sand);
   p.inv_volume.resize(sand);
   for (int j = 0; j < sand; ++j) p.inv_volume[j] = 1.0 / p.volume[j];
 }

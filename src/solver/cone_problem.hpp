@@ -58,15 +58,16 @@ struct ConeProblem {
   // one four-lane load per component. The solver fills it from `velocity`
   // when it starts, and `velocity` from it when it ends; between the two the
   // sweeps read and write this copy only. Likewise the inverse masses by
-  // component, and each sand row's coupling vectors by line
-  // (coupling_lines, kLineDoubles per row: for each of the 9 lines the x, y
-  // and z components of its three nodes; assemble_delassus fills it). Each
+  // component, and each sand row's coupling vectors by line, in single
+  // precision (coupling_lines, kLineEntries per row: for each of the 9 lines
+  // the x, y and z components of its three nodes; assemble_delassus fills it
+  // and rounds `coupling` to the same values, stencil.hpp). Each
   // array has kLanePadding zeros past its end, read by the last line's
   // fourth lane. Empty in 2D, whose sweeps use `velocity` itself.
-  static constexpr int kLineDoubles = D * NS;
+  static constexpr int kLineEntries = D * NS;
   static constexpr int kLanePadding = 4;
   std::array<std::vector<double>, D> velocity_by_axis, inv_mass_by_axis;
-  std::vector<double> coupling_lines;
+  std::vector<float> coupling_lines;
 
   // Stress rows, in runs of rows with pairwise disjoint stencils (rows of
   // one colour: node coordinates mod 3), rows [colour_start[c],

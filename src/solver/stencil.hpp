@@ -27,8 +27,9 @@ namespace solver_detail {
 #ifdef SABLIER_STENCIL_LANES
 // Four lanes from x, of which the callers use the first three (the fourth
 // is the next entry's, read but never used: the arrays it reads carry
-// ConeProblem::kLanePadding doubles past their end).
+// ConeProblem::kLanePadding entries past their end).
 inline __m256d load4(const double* x) { return _mm256_loadu_pd(x); }
+inline __m256d load4(const float* x) { return _mm256_cvtps_pd(_mm_loadu_ps(x)); }
 #endif
 
 // The velocity the sweeps see at entry i, and its update: in 3D a grid
@@ -88,32 +89,42 @@ inline void velocities_from_axes(ConeProblem<D>& p) {
 // 3D: the sand rows' coupling vectors by stencil line (ConeProblem::
 // coupling_lines): line l (nodes 3l, 3l + 1, 3l + 2 of the stencil, which
 // differ by one along x) holds the x components of its three nodes, then
-// their y and z components.
+// their y and z components, in single precision: half the bytes of the
+// sweeps' largest stream (324 instead of 648 per row; 5-9% less time per
+// sweep of the 3D bed, docs/benchmarks.md, twenty-fifth session). The rows'
+// couplings in p.coupling are rounded to the same values, so that B, its
+// transpose and the Delassus blocks (assemble_delassus) stay one operator:
+// a relative change of at most 6e-8 per entry, far below the quadrature's
+// own error, and the energy bound (B and B^T exact transposes) unchanged.
 template <int D>
 inline void pack_coupling_lines(ConeProblem<D>& p, int sand_rows) {
   if constexpr (D == 3) {
-    constexpr int kLine = ConeProblem<D>::kLineDoubles;
+    constexpr int kLine = ConeProblem<D>::kLineEntries;
     for (int s = 0; s < ConeProblem<D>::NS; ++s)
       if (p.stencil[s] != p.stencil[s - s % 3] + s % 3)
         throw std::logic_error(
             "pack_coupling_lines: stencil nodes 3l, 3l+1, 3l+2 are not consecutive");
     p.coupling_lines.resize(std::size_t(sand_rows) * kLine + ConeProblem<D>::kLanePadding);
-    std::fill(p.coupling_lines.end() - ConeProblem<D>::kLanePadding, p.coupling_lines.end(), 0.0);
+    std::fill(p.coupling_lines.end() - ConeProblem<D>::kLanePadding, p.coupling_lines.end(), 0.0f);
 #pragma omp parallel for schedule(static)
     for (int j = 0; j < sand_rows; ++j) {
-      double* out = p.coupling_lines.data() + std::size_t(j) * kLine;
-      const auto& g = p.coupling[j];
+      float* out = p.coupling_lines.data() + std::size_t(j) * kLine;
+      auto& g = p.coupling[j];
       for (int l = 0; l < 9; ++l)
         for (int c = 0; c < 3; ++c)
-          for (int x = 0; x < 3; ++x) out[9 * l + 3 * c + x] = g(c, 3 * l + x);
+          for (int x = 0; x < 3; ++x) {
+            const float r = static_cast<float>(g(c, 3 * l + x));
+            out[9 * l + 3 * c + x] = r;
+            g(c, 3 * l + x) = r;
+          }
     }
   }
 }
 
 // Sand row j's coupling vectors by line (3D, pack_coupling_lines).
 template <int D>
-inline const double* coupling_line(const ConeProblem<D>& p, int j) {
-  return p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineDoubles;
+inline const float* coupling_line(const ConeProblem<D>& p, int j) {
+  return p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineEntries;
 }
 
 // (B u)_j: the symmetric part of sum_i u_i g_ji^T, in basis coordinates.
@@ -131,7 +142,7 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     // L(c, d) is then (lane 0 + lane 1) + lane 2: the same fused products and
     // sums as the loop below (bit-identical results).
     const std::int64_t c0 = p.node[j];
-    const double* gl = coupling_line<D>(p, j);
+    const float* gl = coupling_line<D>(p, j);
     const double* ux = p.velocity_by_axis[0].data() + c0;
     const double* uy = p.velocity_by_axis[1].data() + c0;
     const double* uz = p.velocity_by_axis[2].data() + c0;
@@ -167,7 +178,7 @@ inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
     // Entry (c, d) in partial sum x (the node's place in its line), as the
     // lanes above.
     const std::int64_t c0 = p.node[j];
-    const double* gl = coupling_line<D>(p, j);
+    const float* gl = coupling_line<D>(p, j);
     double e[3][3][3] = {};  // [c][d][x]
     for (int l = 0; l < 9; ++l, gl += 9) {
       const std::int64_t o = c0 + p.stencil[3 * l];
@@ -218,7 +229,7 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
     // lanes only (the fourth is the next node's, which this row does not
     // move). The loop below does the same (bit-identical results).
     const std::int64_t c0 = p.node[j];
-    const double* gl = coupling_line<D>(p, j);
+    const float* gl = coupling_line<D>(p, j);
     double* uc[3] = {p.velocity_by_axis[0].data() + c0, p.velocity_by_axis[1].data() + c0,
                      p.velocity_by_axis[2].data() + c0};
     const double* mc[3] = {p.inv_mass_by_axis[0].data() + c0, p.inv_mass_by_axis[1].data() + c0,
@@ -243,7 +254,7 @@ inline void scatter_stress(ConeProblem<D>& p, int j, const SymVec<D>& dlambda) {
     for (int s = 0; s < ConeProblem<D>::NS; ++s) {
       // T(c, c) g_c + T(c, c + 1) g_{c+1} + T(c, c + 2) g_{c+2}, as the lanes
       // above, from the coupling by lines.
-      const double* gl = coupling_line<D>(p, j) + 9 * (s / 3) + s % 3;
+      const float* gl = coupling_line<D>(p, j) + 9 * (s / 3) + s % 3;
       const std::int64_t i = p.node[j] + p.stencil[s];
       for (int c = 0; c < 3; ++c) {
         double f = T(c, c) * gl[3 * c];
