@@ -146,7 +146,7 @@ template <int D>
 class AndersonMixer {
  public:
   static constexpr int kMaxDepth = 16;
-  static constexpr int kMaxSums = 2 * kMaxDepth;
+  static constexpr int kMaxSums = 2 + 2 * kMaxDepth;  // measure()'s
 
   struct State {
     int next = 0, count = 0;
@@ -175,21 +175,78 @@ class AndersonMixer {
   // velocities into u_before).
   int depth() const { return m_; }
 
-  // p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free node q; w the
-  // kinetic-energy weights per free node; fnorm2 = |f_k|_M^2. Called by
-  // every thread of the solver's parallel region (or serially), each with
-  // its own state `st`; own_rows(f) calls f(j0, j1, pos) on each range of
-  // rows the thread updates in the sweeps, pos numbering its rows
-  // consecutively (the order in which the history of the rows is stored).
-  // Leaves p holding x_{k+1} and u(x_{k+1}), and u_before = u(x_{k+1}) at
-  // the free nodes, ready for the next sweep. Ends without a barrier: the
-  // thread has written its own rows and its share of the free nodes
-  // (SumBlocks::share), which is what the caller may read back before its next
-  // barrier.
+  // The sweep's sums and the history's new entries, in one pass over the
+  // free nodes. p holds G(x_k) and u(G(x_k)); u_before[q] = u(x_k) at free
+  // node q, u_free[q] the velocity without stresses; w the kinetic-energy
+  // weights per free node. residual[0] = |f_k|_M^2 (f_k = u(G(x_k)) -
+  // u(x_k), the sweep's velocity change) and residual[1] = |u(G(x_k)) -
+  // u_free|_M^2, the solver's residual and its scale, summed as the plain
+  // sweeps sum them (the same bits). The pass also stores this sweep's f
+  // and u(G) and their differences from the last sweep's, and accumulates
+  // r_a = <dF_a, f>_M and the Gram matrix's new row A_a0 = <dF_a, dF_0>_M
+  // (dF_0 the difference just stored) into st.sums: all as if the history
+  // records this sweep, which mix() decides from residual[0] afterwards
+  // (when it does not, the history restarts, and what was stored goes
+  // unread: the next recorded difference takes the same slot). Computing
+  // them before the decision saves the pass and the barrier that the
+  // residual's sums took of their own (docs/benchmarks.md, twenty-fifth
+  // session). Called by every thread of the solver's parallel region, each
+  // with its own state; ends with the sums' barrier. depth() > 0.
+  void measure(const Team& team, const ConeProblem<D>& p, const std::vector<std::int64_t>& free,
+               const std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& u_free,
+               const std::vector<Vec<D>>& w, double* residual, State& st) const {
+    // The history as it will be if this sweep is recorded (mix()).
+    const int slot = st.next % m_;
+    const bool record = st.have_prev;
+    const int k = record ? std::min(st.count + 1, m_) : 0;
+    const double* x[kMaxDepth] = {};
+    for (int a = 0; a < k; ++a) x[a] = flat(dF_[((st.next - a) % m_ + m_) % m_]);
+    // Each block goes by chunks of kChunk nodes, the dot products right
+    // after the differences, while they are in the first-level cache.
+    const auto block = [&](std::int64_t b0, std::int64_t b1, double* acc) {
+      simd::Vd sy[kMaxDepth], sz[kMaxDepth];
+      for (int a = 0; a < k; ++a) sy[a] = sz[a] = simd::splat(0.0);
+      // The doubles [b0 D, quads) go by quads, the rest one by one.
+      const std::int64_t quads = b0 * D + ((b1 - b0) * D / 4) * 4;
+      for (std::int64_t c0 = b0; c0 < b1; c0 += kChunk) {
+        const std::int64_t c1 = std::min(b1, c0 + kChunk);
+        for (std::int64_t q = c0; q < c1; ++q) {
+          const Vec<D> u = velocity_at<D>(p, free[q]);
+          const Vec<D> f = u - u_before[q], b = u - u_free[q];
+          acc[0] += f.dot(w[q].cwiseProduct(f));
+          acc[1] += b.dot(w[q].cwiseProduct(b));
+          if (record) {
+            dF_[slot][q] = f - f_prev_[q];
+            dGu_[slot][q] = u - gu_prev_[q];
+          }
+          f_prev_[q] = f;
+          gu_prev_[q] = u;
+        }
+        if (k > 0)
+          weighted_dot_lanes(flat(w), x, k, flat(f_prev_), x[0], c0 * D, std::min(c1 * D, quads),
+                             sy, sz);
+      }
+      if (k > 0)
+        weighted_dot_finish(flat(w), x, k, flat(f_prev_), x[0], quads, b1 * D, sy, sz, acc + 2);
+    };
+    deterministic_block_sums(team, *blocks_, 2 + 2 * k, partial_, st.sums, block);
+    residual[0] = st.sums[0];
+    residual[1] = st.sums[1];
+  }
+
+  // After measure(), with fnorm2 = residual[0] = |f_k|_M^2: decides whether
+  // the history records the sweep, and mixes. own_rows(f) calls f(j0, j1,
+  // pos) on each range of rows the thread updates in the sweeps, pos
+  // numbering its rows consecutively (the order in which the history of the
+  // rows is stored). Leaves p holding x_{k+1} and u(x_{k+1}), and u_before
+  // = u(x_{k+1}) at the free nodes, ready for the next sweep. Ends without a
+  // barrier: the thread has written its own rows and its share of the free
+  // nodes (SumBlocks::share), which is what the caller may read back before
+  // its next barrier. With depth 0, only copies the velocities into
+  // u_before.
   template <class OwnRows>
   void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
-           std::vector<Vec<D>>& u_before, const std::vector<Vec<D>>& w, double fnorm2,
-           const OwnRows& own_rows, State& st) const {
+           std::vector<Vec<D>>& u_before, double fnorm2, const OwnRows& own_rows, State& st) const {
     const auto [q0, q1] = blocks_->share(team);
     if (m_ <= 0) {
       for (std::int64_t q = q0; q < q1; ++q) u_before[q] = velocity_at<D>(p, free[q]);
@@ -206,47 +263,15 @@ class AndersonMixer {
       ++st.next;
       st.count = std::min(st.count + 1, m_);
     }
-    const int k = st.count;
+    const int k = st.count;  // measure()'s k when recorded, else 0
     for (int a = 0; a < k; ++a) st.idx[a] = ((st.next - 1 - a) % m_ + m_) % m_;
     const int* idx = st.idx;
-    // One pass over the free nodes: store the new differences and this
-    // sweep's f and u(G), and accumulate r_a = <dF_a, f>_M and the Gram
-    // matrix's new row A_a0 = <dF_a, dF_0>_M (dF_0 = the difference just
-    // stored; k > 0 implies one was). The older entries do not change and are
-    // kept in st.gram. Each block goes by chunks of kChunk nodes, the sums
-    // right after the differences, while they are in the first-level cache.
-    const double* x[kMaxDepth] = {};
-    for (int a = 0; a < k; ++a) x[a] = flat(dF_[idx[a]]);
-    deterministic_block_sums(
-        team, *blocks_, 2 * k, partial_, st.sums,
-        [&](std::int64_t b0, std::int64_t b1, double* acc) {
-          simd::Vd sy[kMaxDepth], sz[kMaxDepth];
-          for (int a = 0; a < k; ++a) sy[a] = sz[a] = simd::splat(0.0);
-          // The doubles [b0 D, quads) go by quads, the rest one by one.
-          const std::int64_t quads = b0 * D + ((b1 - b0) * D / 4) * 4;
-          for (std::int64_t c0 = b0; c0 < b1; c0 += kChunk) {
-            const std::int64_t c1 = std::min(b1, c0 + kChunk);
-            for (std::int64_t q = c0; q < c1; ++q) {
-              const Vec<D> u = velocity_at<D>(p, free[q]);
-              const Vec<D> f = u - u_before[q];
-              if (record) {
-                dF_[slot][q] = f - f_prev_[q];
-                dGu_[slot][q] = u - gu_prev_[q];
-              }
-              f_prev_[q] = f;
-              gu_prev_[q] = u;
-            }
-            if (k > 0)
-              weighted_dot_lanes(flat(w), x, k, flat(f_prev_), x[0], c0 * D,
-                                 std::min(c1 * D, quads), sy, sz);
-          }
-          if (k > 0)
-            weighted_dot_finish(flat(w), x, k, flat(f_prev_), x[0], quads, b1 * D, sy, sz, acc);
-        });
-    for (int a = 0; a < k; ++a)
-      st.gram[idx[a]][idx[0]] = st.gram[idx[0]][idx[a]] = st.sums[2 * a + 1];
+    // measure()'s dot products: the Gram matrix's new row (its older
+    // entries do not change and are kept in st.gram) and r.
+    const double* dots = st.sums + 2;
+    for (int a = 0; a < k; ++a) st.gram[idx[a]][idx[0]] = st.gram[idx[0]][idx[a]] = dots[2 * a + 1];
     bool combine = k > 0;
-    if (combine && !solve_gram(k, st)) {
+    if (combine && !solve_gram(k, dots, st)) {
       st.count = 0;
       combine = false;
     }
@@ -286,12 +311,12 @@ class AndersonMixer {
   }
 
  private:
-  // st.gamma = A^{-1} r from st.sums; false when the system is singular.
-  static bool solve_gram(int k, State& st) {
+  // st.gamma = A^{-1} r, r_a = dots[2 a]; false when the system is singular.
+  static bool solve_gram(int k, const double* dots, State& st) {
     Eigen::MatrixXd A(k, k);
     Eigen::VectorXd r(k);
     for (int a = 0; a < k; ++a) {
-      r[a] = st.sums[2 * a];
+      r[a] = dots[2 * a];
       for (int b = 0; b < k; ++b) A(a, b) = st.gram[st.idx[a]][st.idx[b]];
     }
     const double scale = A.diagonal().maxCoeff();

@@ -500,15 +500,19 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           [&] { queue.flush(p); }, [&] { team.sync(); });
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2. Without mixing, u_prev
       // takes u^k here for the next sweep (what the mixer would do in a pass
-      // of its own).
+      // of its own); with it, the mixer's pass sums them (measure).
       double sums[2];
-      deterministic_sums(team, blocks, 2, partial, sums, [&](std::int64_t q, double* acc) {
-        const Vec<D> u = velocity_at<D>(p, free[q]);
-        const Vec<D> a = u - u_prev[q], b = u - u_free[q];
-        acc[0] += a.dot(weight[q].cwiseProduct(a));
-        acc[1] += b.dot(weight[q].cwiseProduct(b));
-        if (plain) u_prev[q] = u;
-      });
+      if (plain) {
+        deterministic_sums(team, blocks, 2, partial, sums, [&](std::int64_t q, double* acc) {
+          const Vec<D> u = velocity_at<D>(p, free[q]);
+          const Vec<D> a = u - u_prev[q], b = u - u_free[q];
+          acc[0] += a.dot(weight[q].cwiseProduct(a));
+          acc[1] += b.dot(weight[q].cwiseProduct(b));
+          u_prev[q] = u;
+        });
+      } else {
+        mixer.measure(team, p, free, u_prev, u_free, weight, sums, mix_state);
+      }
       const double r = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
       my_iterations = it;
       my_residual = r;
@@ -537,7 +541,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
         });
       }
       if (it < max_iterations && !plain)
-        mixer.mix(team, p, free, u_prev, weight, sums[0], own_rows, mix_state);
+        mixer.mix(team, p, free, u_prev, sums[0], own_rows, mix_state);
     }
     const bool restored = my_residual > tolerance && best < my_residual;
     if (restored) {
