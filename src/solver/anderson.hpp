@@ -171,8 +171,8 @@ class AndersonMixer {
     partial_.assign(std::int64_t(blocks.count()) * kMaxSums, 0.0);
   }
 
-  // The history's depth (0: plain Gauss-Seidel, mix() only copies the
-  // velocities into u_before).
+  // The history's depth (0: plain Gauss-Seidel, whose sweeps the solver
+  // neither measures nor mixes here).
   int depth() const { return m_; }
 
   // The sweep's sums and the history's new entries, in one pass over the
@@ -242,16 +242,11 @@ class AndersonMixer {
   // = u(x_{k+1}) at the free nodes, ready for the next sweep. Ends without a
   // barrier: the thread has written its own rows and its share of the free
   // nodes (SumBlocks::share), which is what the caller may read back before
-  // its next barrier. With depth 0, only copies the velocities into
-  // u_before.
+  // its next barrier. depth() > 0.
   template <class OwnRows>
   void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
            std::vector<Vec<D>>& u_before, double fnorm2, const OwnRows& own_rows, State& st) const {
     const auto [q0, q1] = blocks_->share(team);
-    if (m_ <= 0) {
-      for (std::int64_t q = q0; q < q1; ++q) u_before[q] = velocity_at<D>(p, free[q]);
-      return;
-    }
     // The history bookkeeping, the same on every thread.
     const bool grew = st.have_prev && fnorm2 > kGrowth * kGrowth * st.fnorm2_prev;
     if (grew) st.count = 0;  // restart
