@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -208,16 +209,21 @@ class AndersonMixer {
       for (int a = 0; a < k; ++a) sy[a] = sz[a] = simd::splat(0.0);
       // The doubles [b0 D, quads) go by quads, the rest one by one.
       const std::int64_t quads = b0 * D + ((b1 - b0) * D / 4) * 4;
+      // The residual's two sums in registers (acc may alias the arrays), in
+      // the same order as into acc.
+      double r0 = acc[0], r1 = acc[1];
+      Vec<D>* const new_df = dF_[slot].data();
+      Vec<D>* const new_dgu = dGu_[slot].data();
       for (std::int64_t c0 = b0; c0 < b1; c0 += kChunk) {
         const std::int64_t c1 = std::min(b1, c0 + kChunk);
         for (std::int64_t q = c0; q < c1; ++q) {
           const Vec<D> u = velocity_at<D>(p, free[q]);
           const Vec<D> f = u - u_before[q], b = u - u_free[q];
-          acc[0] += f.dot(w[q].cwiseProduct(f));
-          acc[1] += b.dot(w[q].cwiseProduct(b));
+          r0 += f.dot(w[q].cwiseProduct(f));
+          r1 += b.dot(w[q].cwiseProduct(b));
           if (record) {
-            dF_[slot][q] = f - f_prev_[q];
-            dGu_[slot][q] = u - gu_prev_[q];
+            new_df[q] = f - f_prev_[q];
+            new_dgu[q] = u - gu_prev_[q];
           }
           f_prev_[q] = f;
           gu_prev_[q] = u;
@@ -226,6 +232,8 @@ class AndersonMixer {
           weighted_dot_lanes(flat(w), x, k, flat(f_prev_), x[0], c0 * D, std::min(c1 * D, quads),
                              sy, sz);
       }
+      acc[0] = r0;
+      acc[1] = r1;
       if (k > 0)
         weighted_dot_finish(flat(w), x, k, flat(f_prev_), x[0], quads, b1 * D, sy, sz, acc + 2);
     };
@@ -273,39 +281,58 @@ class AndersonMixer {
     const double* gamma = st.gamma;
     // The thread's free nodes (the blocks it summed): u(x_{k+1}), also kept as
     // the next sweep's u_before.
+    const int kc = combine ? k : 0;  // the differences combined
+    const Vec<D>* gu[kMaxDepth];
+    for (int a = 0; a < kc; ++a) gu[a] = dGu_[idx[a]].data();
     for (std::int64_t q = q0; q < q1; ++q) {
       Vec<D> u = velocity_at<D>(p, free[q]);
       if (combine) {
-        for (int a = 0; a < k; ++a) u -= gamma[a] * dGu_[idx[a]][q];
+        for (int a = 0; a < kc; ++a) u -= gamma[a] * gu[a][q];
         set_velocity_at<D>(p, free[q], u);
       }
       u_before[q] = u;
     }
-    // The thread's rows: the new difference of the stresses, then x_{k+1}.
+    // The thread's rows: the new difference of the stresses, then x_{k+1},
+    // in one pass over each range.
     constexpr int SD = sym_size(D);
     double* lambda = flat(p.lambda);
     const double* dl[kMaxDepth];
-    for (int a = 0; a < k; ++a) dl[a] = flat(dGl_[idx[a]]);
-    double* new_dl = flat(dGl_[slot]);
+    for (int a = 0; a < kc; ++a) dl[a] = flat(dGl_[idx[a]]);
+    double* new_dl = record ? flat(dGl_[slot]) : nullptr;
     double* prev = flat(gl_prev_);
     own_rows([&](int j0, int j1, int pos) {
-      const std::int64_t i0 = std::int64_t(j0) * SD, n = std::int64_t(j1 - j0) * SD;
-      double* l = lambda + i0;
-      double* pr = prev + std::int64_t(pos) * SD;
-      if (record) {
-        double* nd = new_dl + std::int64_t(pos) * SD;
-        for (std::int64_t i = 0; i < n; ++i) nd[i] = l[i] - pr[i];
-      }
-      std::copy(l, l + n, pr);
-      if (combine)
-        for (int a = 0; a < k; ++a) {
-          const double g = gamma[a], *d = dl[a] + std::int64_t(pos) * SD;
-          for (std::int64_t i = 0; i < n; ++i) l[i] -= g * d[i];
-        }
+      const std::int64_t o = std::int64_t(pos) * SD;
+      mix_rows(lambda + std::int64_t(j0) * SD, prev + o, new_dl ? new_dl + o : nullptr, dl, o,
+               gamma, kc, std::int64_t(j1 - j0) * SD);
     });
   }
 
  private:
+  // Over the n doubles of a range of rows: nd = l - pr (when nd is not
+  // null), pr = l, then l -= g[a] d[a][o + i] for a < k, in that order (the
+  // same operations, and so the same bits, as one loop per step).
+  static void mix_rows(double* l, double* pr, double* nd, const double* const* d, std::int64_t o,
+                       const double* g, int k, std::int64_t n) {
+    std::int64_t i = 0;
+#ifdef SABLIER_STENCIL_LANES
+    for (; i + 4 <= n; i += 4) {
+      __m256d v = _mm256_loadu_pd(l + i);
+      if (nd) _mm256_storeu_pd(nd + i, _mm256_sub_pd(v, _mm256_loadu_pd(pr + i)));
+      _mm256_storeu_pd(pr + i, v);
+      for (int a = 0; a < k; ++a)
+        v = _mm256_fnmadd_pd(_mm256_set1_pd(g[a]), _mm256_loadu_pd(d[a] + o + i), v);
+      _mm256_storeu_pd(l + i, v);
+    }
+#endif
+    for (; i < n; ++i) {
+      double v = l[i];
+      if (nd) nd[i] = v - pr[i];
+      pr[i] = v;
+      for (int a = 0; a < k; ++a) v = std::fma(-g[a], d[a][o + i], v);
+      l[i] = v;
+    }
+  }
+
   // st.gamma = A^{-1} r, r_a = dots[2 a]; false when the system is singular.
   static bool solve_gram(int k, const double* dots, State& st) {
     Eigen::MatrixXd A(k, k);
