@@ -52,6 +52,7 @@ Checkpoint capture_checkpoint(const Simulation<D>& sim) {
   c.shear_rate = p.shear_rate;
   c.nodes = sim.warm_start().size();
   detail::flatten(sim.warm_start(), c.warm_stress);
+  c.warm_case = sim.warm_cases();
   return c;
 }
 
@@ -90,7 +91,7 @@ Simulation<D> restore_simulation(const SceneConfig& scene, const Checkpoint& c,
     throw CheckpointError(source + ": holds " + std::to_string(c.nodes) +
                           " warm-start stresses, the scene's grid needs " + std::to_string(nodes) +
                           "; cannot resume");
-  sim.restore_clock(c.time, c.steps, detail::unflatten<SymVec<D>>(c.warm_stress));
+  sim.restore_clock(c.time, c.steps, detail::unflatten<SymVec<D>>(c.warm_stress), c.warm_case);
   return sim;
 }
 

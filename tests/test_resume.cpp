@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <utility>
 
 #include "io/checkpoint.hpp"
+#include "io/hash.hpp"
 #include "io/stats_writer.hpp"
 #include "io/writers.hpp"
 #include "test_support.hpp"
@@ -329,6 +331,7 @@ Checkpoint tiny() {
   c.shear_rate = {0.0, 3.0};
   c.nodes = 3;
   c.warm_stress = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+  c.warm_case = {0, 2, 1};
   return c;
 }
 
@@ -350,6 +353,7 @@ TEST(Resume, CheckpointRoundTrip) {
   EXPECT_EQ(d.id, c.id);
   EXPECT_EQ(d.material, c.material);
   EXPECT_EQ(d.warm_stress, c.warm_stress);
+  EXPECT_EQ(d.warm_case, c.warm_case);
   // Every truncation is refused, whatever its length.
   for (std::size_t n = 0; n < bytes.size(); ++n)
     EXPECT_THROW(decode_checkpoint(bytes.substr(0, n), "t.bin"), CheckpointError) << n;
@@ -357,6 +361,55 @@ TEST(Resume, CheckpointRoundTrip) {
   Checkpoint bad = c;
   bad.phi.pop_back();
   EXPECT_THROW(encode_checkpoint(bad, "t.bin"), CheckpointError);
+}
+
+// Format 3 (no per-node cases) is still read: the same bytes without the
+// cases, which come back empty (Simulation::restore_clock then knows none).
+TEST(Resume, ReadsFormat3WithoutCases) {
+  const Checkpoint c = tiny();
+  std::string bytes = encode_checkpoint(c, "t.bin");
+  bytes.resize(bytes.size() - 8 - c.warm_case.size());  // drop the checksum and the cases
+  const std::uint32_t three = 3;
+  std::memcpy(&bytes[11], &three, sizeof three);  // little-endian hosts, as the format
+  const std::uint64_t sum = fnv1a64(bytes);
+  bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  const Checkpoint d = decode_checkpoint(bytes, "t.bin");
+  EXPECT_EQ(d.version, 3u);
+  EXPECT_EQ(d.warm_stress, c.warm_stress);
+  EXPECT_TRUE(d.warm_case.empty());
+  // Versions outside 3-4 are refused, naming both.
+  std::string five = encode_checkpoint(c, "t.bin");
+  const std::uint32_t v5 = 5;
+  std::memcpy(&five[11], &v5, sizeof v5);
+  try {
+    decode_checkpoint(five, "t.bin");
+    ADD_FAILURE() << "format 5 read";
+  } catch (const CheckpointError& e) {
+    EXPECT_TRUE(contains(e.what(), "format version 5")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "reads versions 3 to 4")) << e.what();
+  }
+}
+
+// With the sand cut into zones (solver.zone_rows small), the next step's
+// cuts depend on the cases the last solve ended in (transfer.cpp,
+// kZoneCost): the checkpoint carries them, and the resumed run is still the
+// uninterrupted one, bit for bit.
+TEST(Resume, InZonesContinuesBitForBit) {
+  const fs::path a = fresh("zones_a"), b = fresh("zones_b");
+  const auto args = [](const fs::path& dir) {
+    return "run " + scene_file("collapse2d.toml") + " --out " + dir.string() +
+           " --set time.frames=4 --set grid.resolution=[80,20] --set solver.zone_rows=40"
+           " --threads 1 --quiet";
+  };
+  ASSERT_EQ(sablier(args(a)).code, 0);
+  ASSERT_EQ(sablier(args(b) + " --stop-after-frame 2").code, 130);
+  const Result resumed = sablier("run --resume " + b.string() + " --threads 1 --quiet");
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  for (const char* f : {"frames/particles_00003.vtp", "frames/particles_00004.vtp"})
+    EXPECT_EQ(file(a / f), file(b / f)) << f;
+  expect_same_stats(a, b);
+  fs::remove_all(a);
+  fs::remove_all(b);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "io/bytes.hpp"
 #include "io/hash.hpp"
@@ -35,6 +36,7 @@ void for_each_array(C& c, F&& f) {
   f(c.phi, 1, n);
   f(c.shear_rate, 1, n);
   f(c.warm_stress, s, c.nodes);
+  if (c.version >= 4) f(c.warm_case, 1, c.nodes);
 }
 
 // File size the header announces; max() when its counts cannot fit in a
@@ -42,15 +44,19 @@ void for_each_array(C& c, F&& f) {
 std::uint64_t expected_size(const Checkpoint& c, std::uint64_t available) {
   if (c.particles > available || c.nodes > available || (c.dimension != 2 && c.dimension != 3))
     return std::numeric_limits<std::uint64_t>::max();
-  std::uint64_t values = c.frame_times.size();
-  for_each_array(
-      c, [&](const auto&, std::uint64_t per, std::uint64_t count) { values += per * count; });
-  return kHeaderBytes + c.formats.size() + 8 * values + 8;
+  std::uint64_t bytes = 8 * c.frame_times.size();
+  for_each_array(c, [&](const auto& v, std::uint64_t per, std::uint64_t count) {
+    bytes += sizeof(typename std::remove_reference_t<decltype(v)>::value_type) * per * count;
+  });
+  return kHeaderBytes + c.formats.size() + bytes + 8;
 }
 
 }  // namespace
 
 std::string encode_checkpoint(const Checkpoint& c, const std::string& target) {
+  if (c.version != Checkpoint::kFormatVersion)
+    throw CheckpointError(fmt::format("{}: internal error: writes format {} only, not {}", target,
+                                      Checkpoint::kFormatVersion, c.version));
   ByteWriter w;
   constexpr std::uint64_t kUnbounded = std::numeric_limits<std::uint64_t>::max();
   if (const std::uint64_t size = expected_size(c, kUnbounded); size != kUnbounded) w.reserve(size);
@@ -91,10 +97,12 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& source
   ByteReader r(bytes, kMagicSize);
   const auto version = r.get<std::uint32_t>();
   if (!r.ok()) throw fail(fmt::format("truncated ({} bytes)", size));
-  if (version != Checkpoint::kFormatVersion)
-    throw fail(fmt::format("checkpoint format version {}, this sablier ({}) reads version {}",
-                           version, SABLIER_VERSION, Checkpoint::kFormatVersion));
+  if (version < Checkpoint::kOldestReadable || version > Checkpoint::kFormatVersion)
+    throw fail(fmt::format(
+        "checkpoint format version {}, this sablier ({}) reads versions {} to {}", version,
+        SABLIER_VERSION, Checkpoint::kOldestReadable, Checkpoint::kFormatVersion));
   Checkpoint c;
+  c.version = version;
   c.dimension = static_cast<int>(r.get<std::uint32_t>());
   c.scene_hash = r.get<std::uint64_t>();
   c.steps = r.get<std::int64_t>();

@@ -7,7 +7,8 @@
 // i64 steps, f64 time, i32 frame, i32 substep, u64 particles, u64 nodes,
 // u32 formats length, u32 frame-time count, the formats text, the frame
 // times, the particle arrays in the order of the struct, the per-node warm
-// start, u64 checksum.
+// start (8-byte values), then from format 4 the per-node cases (one byte
+// each), u64 checksum.
 #pragma once
 
 #include <cstdint>
@@ -27,7 +28,13 @@ struct Checkpoint {
   // 2: the per-particle material index (several materials per scene).
   // 3: same bytes, but solver.decompaction defaults to "move" since 0.2.0:
   // a run started before would resume with other physics, so it is refused.
-  static constexpr std::uint32_t kFormatVersion = 3;
+  // 4: the per-node cases (warm_case). Format 3 is still read (its run
+  // resumes with no cases known, as after a first step, so only the next
+  // step's zones can differ from those of an unbroken run).
+  static constexpr std::uint32_t kFormatVersion = 4;
+  static constexpr std::uint32_t kOldestReadable = 3;
+
+  std::uint32_t version = kFormatVersion;  // written: always kFormatVersion
 
   int dimension = 2;
   std::uint64_t scene_hash = 0;  // fnv1a64 of the resolved scene text
@@ -48,6 +55,9 @@ struct Checkpoint {
   std::vector<double> stress, phi, shear_rate;
   // Per node, S values: last step's stresses, the next solve's warm start.
   std::vector<double> warm_stress;
+  // Per node (format 4; empty when read from format 3): the case its sand
+  // row ended the last solve in (DPCase), which the next step's zones use.
+  std::vector<std::uint8_t> warm_case;
 };
 
 // Throws CheckpointError if the arrays' sizes disagree with the counts.

@@ -53,6 +53,7 @@ Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
   obstacles_ = make_obstacles<D>(scene);
   find_thin_solids();
   warm_lambda_.assign(obstacles_.empty() ? nodes : 2 * nodes, SymVec<D>::Zero());
+  warm_case_.assign(warm_lambda_.size(), 0);
   problem_.velocity.assign(nodes, Vec<D>::Zero());
   problem_.inv_mass.assign(nodes, Vec<D>::Zero());
   problem_.stencil = grid_.stencil_offsets();
@@ -337,7 +338,11 @@ StepInfo Simulation<D>::step(double dt) {
 
   t0 = Clock::now();
   std::fill(warm_lambda_.begin(), warm_lambda_.end(), SymVec<D>::Zero());
-  for (int j = 0; j < obstacle_row_start_; ++j) warm_lambda_[problem_.node[j]] = problem_.lambda[j];
+  std::fill(warm_case_.begin(), warm_case_.end(), std::uint8_t(0));
+  for (int j = 0; j < obstacle_row_start_; ++j) {
+    warm_lambda_[problem_.node[j]] = problem_.lambda[j];
+    warm_case_[problem_.node[j]] = static_cast<std::uint8_t>(problem_.state[j]);
+  }
   // The obstacles feel the opposite of the force their rows put on the sand,
   // f = Lambda_j g_j (cone_problem.hpp).
   info.obstacle_force.assign(obstacles_.size(), Vec3d{0, 0, 0});

@@ -126,13 +126,22 @@ class Simulation {
   // Checkpointing (app/checkpoint_state.hpp). Besides the scene and the
   // particles, the future depends on the clock and on the warm start of the
   // next solve: last step's stresses per grid node (then, with obstacles,
-  // the obstacle rows' stresses per grid node). Everything else is rebuilt
-  // from these at the start of each step.
+  // the obstacle rows' stresses per grid node), and the case (DPCase) each
+  // node's sand row ended that solve in, which sets the next step's zones
+  // (transfer.cpp). Everything else is rebuilt from these at the start of
+  // each step. `cases` may be empty (a checkpoint of format 3): no case
+  // known, as before a first step.
   const std::vector<SymVec<D>>& warm_start() const { return warm_lambda_; }
-  void restore_clock(double time, std::int64_t steps, std::vector<SymVec<D>> warm_start) {
+  const std::vector<std::uint8_t>& warm_cases() const { return warm_case_; }
+  void restore_clock(double time, std::int64_t steps, std::vector<SymVec<D>> warm_start,
+                     std::vector<std::uint8_t> cases) {
     time_ = time;
     steps_ = steps;
     warm_lambda_ = std::move(warm_start);
+    if (cases.size() == warm_lambda_.size())
+      warm_case_ = std::move(cases);
+    else
+      warm_case_.assign(warm_lambda_.size(), 0);
   }
 
  private:
@@ -247,6 +256,9 @@ class Simulation {
   std::vector<Vec<D>> free_mask_;       // 1 on free velocity components, 0 on constrained
   std::vector<int> row_of_node_;        // stress row index or -1
   std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start
+  // Per warm_lambda_ entry, the case its sand row ended the last solve in
+  // (a DPCase; 0, separation, where there was none): the zones' costs.
+  std::vector<std::uint8_t> warm_case_;
   std::vector<double> row_mu_sum_, row_cohesion_sum_;  // sum_p V_p N_j (mu_p, c_p)
   // move_grains_apart (decompaction.cpp): per node, the relative excess; per
   // grain, the lift and its cell's base node.
