@@ -159,7 +159,7 @@ TEST(Zones, BedSplitsToALine3D) {
 
 // The cuts balance costs, not rows: the same bed with its top three layers
 // costing 2 per row and the others 5 (the solver's costs of rows that start
-// without stress and with it, physics/transfer.cpp). Each thread's zone and
+// without stress and with it, solver/zones.hpp, zone_row_cost). Each thread's zone and
 // separator then cost the same to within a line's cost (51 x 5), and so do
 // the two separators, the trailing one (at the top) holding more rows.
 TEST(Zones, CutsBalanceCosts3D) {
@@ -183,6 +183,42 @@ TEST(Zones, CutsBalanceCosts3D) {
   EXPECT_EQ(unit_rows<3>(L, 2), 51 * (2 * 11 + 2));
   EXPECT_GT(unit_rows<3>(L, 3), unit_rows<3>(L, 2));
   // Without costs the two separators hold the same rows (BedSplitsToALine3D).
+}
+
+// 2D rows weigh by the case they ended the last solve in (zone_row_cost):
+// a 200 x 64 block whose upper half slid and lower half stuck, in two
+// zones. The thread with the sliding half gets fewer rows, and each
+// thread's zone and separator cost the same to within a row's cost (the
+// cuts fall between single nodes in 2D), and so do the two separators.
+// 3D counts stressed rows alike whatever their case (the twenty-fourth
+// session's rule, kept).
+TEST(Zones, SlidingRowsWeighMore2D) {
+  std::mt19937 rng(9);
+  std::vector<std::array<int, 2>> coords;
+  std::vector<std::int64_t> key;
+  random_rows<2>(rng, {200, 64}, 1.0, coords, key);
+  std::vector<int> cost(coords.size());
+  for (std::size_t j = 0; j < coords.size(); ++j)
+    cost[j] = zone_row_cost<2>(true, coords[j][1] >= 32 ? DPCase::Slide : DPCase::Stick);
+  const ZoneLayout L = zone_layout<2>(coords, key, 4000, cost);
+  ASSERT_EQ(L.zones, 2);
+  constexpr int NC = 9;
+  const auto unit_cost = [&](int u) {
+    std::int64_t c = 0;
+    for (int i = L.run_start[u * NC]; i < L.run_start[(u + 1) * NC]; ++i) c += cost[L.order[i]];
+    return c;
+  };
+  const int slide = zone_row_cost<2>(true, DPCase::Slide);
+  EXPECT_GT(slide, 2 * zone_row_cost<2>(true, DPCase::Stick));
+  EXPECT_GT(zone_row_cost<2>(true, DPCase::Separation),
+            zone_row_cost<2>(false, DPCase::Separation));
+  EXPECT_LE(std::abs((unit_cost(0) + unit_cost(2)) - (unit_cost(1) + unit_cost(3))), slide);
+  EXPECT_LE(std::abs(unit_cost(2) - unit_cost(3)), slide);
+  EXPECT_GT(unit_rows<2>(L, 0) + unit_rows<2>(L, 2),
+            unit_rows<2>(L, 1) + unit_rows<2>(L, 3) + 2000);
+  EXPECT_EQ(zone_row_cost<3>(true, DPCase::Slide), zone_row_cost<3>(true, DPCase::Stick));
+  EXPECT_LT(zone_row_cost<3>(false, DPCase::Separation),
+            zone_row_cost<3>(true, DPCase::Separation));
 }
 
 }  // namespace

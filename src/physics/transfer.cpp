@@ -13,28 +13,6 @@
 
 namespace sablier {
 
-// What a sand row costs a sweep, for the zones' cuts (solver/zones.hpp), by
-// what is known before the solve: [0] no warm-start stress (a row that
-// stays separated skips its scatter, the larger half of its time); with
-// one, the case the row ended the last solve in: [1] separated or none
-// known, [2] stick, [3] slide.
-// 3D: 2 without stress and 5 with, whatever the case (on the benchmark's
-// 3D bed, whose top layers separate, counting rows alone left the thread
-// whose separator held them idle for about 7% of a sweep; twenty-fourth
-// session). 2D: the cycles a row update took by case (one thread, 5 mm
-// collapse: separated 49, stick 60, slide 285, rotated problem and batched
-// slide solve) plus the mixing's per row (about 30), in tens of cycles: a
-// slide costs three times a stick, and with the old 3D rule the upper zones
-// of the 5 mm collapse, which slide, took 20-35% more cycles than the lower
-// ones (time-stamp counter, either thread on either core), and their thread
-// kept the other waiting; with these costs a sweep took 4-5% less time
-// (docs/benchmarks.md, twenty-sixth session). In 3D the same rule made no
-// difference that the guest's noise let us see.
-template <int D>
-constexpr int kZoneCost[4] = {2, 5, 5, 5};
-template <>
-constexpr int kZoneCost<2>[4] = {8, 9, 10, 28};
-
 template <int D>
 void Simulation<D>::sort_particles() {
   const std::size_t n = particles_.size();
@@ -98,12 +76,8 @@ void Simulation<D>::transfer_to_grid(double dt) {
   std::vector<int> cost(nodes.size());
   for (std::size_t r = 0; r < nodes.size(); ++r) {
     const std::int64_t i = nodes[r];
-    const auto last = static_cast<DPCase>(warm_case_[i]);
-    const int k = !(warm_lambda_[i].squaredNorm() > 0.0) ? 0
-                  : last == DPCase::Stick                ? 2
-                  : last == DPCase::Slide                ? 3
-                                                         : 1;
-    cost[r] = kZoneCost<D>[k];
+    cost[r] =
+        zone_row_cost<D>(warm_lambda_[i].squaredNorm() > 0.0, static_cast<DPCase>(warm_case_[i]));
   }
   const ZoneLayout layout = zone_layout<D>(coords, nodes, scene_.solver.zone_rows, cost);
   constexpr int kColours = ipow(3, D);

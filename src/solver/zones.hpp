@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/tensor.hpp"
+#include "solver/drucker_prager.hpp"
 
 namespace sablier {
 
@@ -99,6 +100,32 @@ inline bool place_separators(const std::vector<std::int64_t>& count, int z, int 
 }
 
 }  // namespace zone_detail
+
+// What a sand row costs a sweep, for the zones' cuts (zone_layout), by
+// what is known before the solve: [0] no warm-start stress (a row that
+// stays separated skips its scatter, the larger half of its time); with
+// one, the case the row ended the last solve in: [1] separated or none
+// known, [2] stick, [3] slide.
+// 3D: 2 without stress and 5 with, whatever the case (on the benchmark's
+// 3D bed, whose top layers separate, counting rows alone left the thread
+// whose separator held them idle for about 7% of a sweep; twenty-fourth
+// session). 2D: the cycles a row update took by case (one thread, 5 mm
+// collapse: separated 49, stick 60, slide 285, rotated problem and batched
+// slide solve) plus the mixing's per row (about 30), in tens of cycles: a
+// slide costs three times a stick, and with the old 3D rule the upper zones
+// of the 5 mm collapse, which slide, took 20-35% more cycles than the lower
+// ones (time-stamp counter, either thread on either core), and their thread
+// kept the other waiting; with these costs a sweep took 4-5% less time
+// (docs/benchmarks.md, twenty-sixth session). In 3D the same rule made no
+// difference that the guest's noise let us see.
+template <int D>
+constexpr int kZoneCost[4] = {2, 5, 5, 5};
+template <>
+constexpr int kZoneCost<2>[4] = {8, 9, 10, 28};
+template <int D>
+constexpr int zone_row_cost(bool stressed, DPCase last) {
+  return kZoneCost<D>[!stressed ? 0 : last == DPCase::Stick ? 2 : last == DPCase::Slide ? 3 : 1];
+}
 
 // The layout of rows at node coordinates coords[j], each run sorted by
 // key[j] (distinct keys: the node index). The zones hold about zone_rows
