@@ -50,6 +50,15 @@ int unit_rows(const ZoneLayout& L, int u) {
   return L.run_start[(u + 1) * NC] - L.run_start[u * NC];
 }
 
+// The summed cost of unit u's rows.
+template <int D>
+std::int64_t unit_cost(const ZoneLayout& L, const std::vector<int>& cost, int u) {
+  constexpr int NC = ipow(3, D);
+  std::int64_t c = 0;
+  for (int i = L.run_start[u * NC]; i < L.run_start[(u + 1) * NC]; ++i) c += cost[L.order[i]];
+  return c;
+}
+
 template <int D>
 void check_layout(const std::array<int, D>& cells, double fill, int zone_rows, unsigned seed) {
   constexpr int NC = ipow(3, D);
@@ -171,15 +180,11 @@ TEST(Zones, CutsBalanceCosts3D) {
   for (std::size_t j = 0; j < coords.size(); ++j) cost[j] = coords[j][2] >= 12 ? 2 : 5;
   const ZoneLayout L = zone_layout<3>(coords, key, 500, cost);
   ASSERT_EQ(L.zones, 2);
-  constexpr int NC = 27;
-  const auto unit_cost = [&](int u) {
-    std::int64_t c = 0;
-    for (int i = L.run_start[u * NC]; i < L.run_start[(u + 1) * NC]; ++i) c += cost[L.order[i]];
-    return c;
-  };
   const std::int64_t line = 51 * 5;
-  EXPECT_LE(std::abs((unit_cost(0) + unit_cost(2)) - (unit_cost(1) + unit_cost(3))), line);
-  EXPECT_LE(std::abs(unit_cost(2) - unit_cost(3)), line);
+  EXPECT_LE(std::abs((unit_cost<3>(L, cost, 0) + unit_cost<3>(L, cost, 2)) -
+                     (unit_cost<3>(L, cost, 1) + unit_cost<3>(L, cost, 3))),
+            line);
+  EXPECT_LE(std::abs(unit_cost<3>(L, cost, 2) - unit_cost<3>(L, cost, 3)), line);
   EXPECT_EQ(unit_rows<3>(L, 2), 51 * (2 * 11 + 2));
   EXPECT_GT(unit_rows<3>(L, 3), unit_rows<3>(L, 2));
   // Without costs the two separators hold the same rows (BedSplitsToALine3D).
@@ -202,18 +207,14 @@ TEST(Zones, SlidingRowsWeighMore2D) {
     cost[j] = zone_row_cost<2>(true, coords[j][1] >= 32 ? DPCase::Slide : DPCase::Stick);
   const ZoneLayout L = zone_layout<2>(coords, key, 4000, cost);
   ASSERT_EQ(L.zones, 2);
-  constexpr int NC = 9;
-  const auto unit_cost = [&](int u) {
-    std::int64_t c = 0;
-    for (int i = L.run_start[u * NC]; i < L.run_start[(u + 1) * NC]; ++i) c += cost[L.order[i]];
-    return c;
-  };
   const int slide = zone_row_cost<2>(true, DPCase::Slide);
   EXPECT_GT(slide, 2 * zone_row_cost<2>(true, DPCase::Stick));
   EXPECT_GT(zone_row_cost<2>(true, DPCase::Separation),
             zone_row_cost<2>(false, DPCase::Separation));
-  EXPECT_LE(std::abs((unit_cost(0) + unit_cost(2)) - (unit_cost(1) + unit_cost(3))), slide);
-  EXPECT_LE(std::abs(unit_cost(2) - unit_cost(3)), slide);
+  EXPECT_LE(std::abs((unit_cost<2>(L, cost, 0) + unit_cost<2>(L, cost, 2)) -
+                     (unit_cost<2>(L, cost, 1) + unit_cost<2>(L, cost, 3))),
+            slide);
+  EXPECT_LE(std::abs(unit_cost<2>(L, cost, 2) - unit_cost<2>(L, cost, 3)), slide);
   EXPECT_GT(unit_rows<2>(L, 0) + unit_rows<2>(L, 2),
             unit_rows<2>(L, 1) + unit_rows<2>(L, 3) + 2000);
   EXPECT_EQ(zone_row_cost<3>(true, DPCase::Slide), zone_row_cost<3>(true, DPCase::Stick));
