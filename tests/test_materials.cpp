@@ -90,9 +90,9 @@ TEST(Materials, TwoLayerBedCarriesEachLayersWeight) {
   std::cout << "two-layer bed: max speed at 1 s = " << sim.max_speed()
             << " m/s; sigma_v one node above the floor = " << s1 << " Pa, weight above "
             << weight_above_1 << " Pa (" << 100 * (s1 / weight_above_1 - 1)
-            << "%; phi_max g (rho1 h1 + rho2 h2) = " << floor_weight
-            << " Pa); at the interface " << s6 << " Pa, weight above " << weight_interface
-            << " Pa (" << 100 * (s6 / weight_interface - 1) << "%)\n";
+            << "%; phi_max g (rho1 h1 + rho2 h2) = " << floor_weight << " Pa); at the interface "
+            << s6 << " Pa, weight above " << weight_interface << " Pa ("
+            << 100 * (s6 / weight_interface - 1) << "%)\n";
   EXPECT_LT(sim.max_speed(), 1e-3);
   EXPECT_NEAR(s1 / weight_above_1, 1.0, 0.05);
   EXPECT_NEAR(s6 / weight_interface, 1.0, 0.05);
@@ -154,28 +154,75 @@ Simulation<2> collapsed(const std::string& text) {
 }
 
 // The columns are far apart (their fronts stay more than 0.3 m apart): each must
-// spread as it does alone, and the smoother one farther.
+// spread as it does alone, and the smoother one farther. A collapse is
+// chaotic at the grain scale, and here the two columns share one solve,
+// whose stopping sweep the other column moves: single runs of the mu = 0.2
+// column, with and without the other, differed by -3.1% to +5.6% over
+// solver settings (tolerances 1e-5 to 1e-6, with and without
+// solver.relaxation; measured 2026-12-06), a noise a single pair of runs
+// cannot tell from an interaction. So, as in validation_physics.cpp's
+// tolerance test, we compare ensembles: the grains jittered by 0.5 with
+// seeds 1 to 5, the mean run-outs with and without the other column must
+// agree to 3% and to within three standard errors of their difference.
+// Measured: mu 0.2, 0.4248 m beside the other column and 0.4303 m alone
+// (-1.3%, standard error 0.0068 m); mu 0.8, 0.0688 and 0.0691 m (-0.4%).
+std::string seeded(const std::string& scene, int seed) {
+  std::string s = "seed = " + std::to_string(seed) + "\n" + scene;
+  const std::string key = "particles_per_cell = 3\n", jitter = "jitter = 0.5\n";
+  for (std::size_t at = s.find(key); at != std::string::npos; at = s.find(key, at + 1)) {
+    s.insert(at, jitter);
+    at += jitter.size();
+  }
+  return s;
+}
+
+struct Ensemble {
+  double mean = 0.0, var = 0.0;
+};
+Ensemble ensemble(const std::vector<double>& x) {
+  Ensemble e;
+  for (double v : x) e.mean += v / x.size();
+  for (double v : x) e.var += (v - e.mean) * (v - e.mean) / (x.size() - 1);
+  return e;
+}
+
 TEST(Materials, ColumnsOfTwoFrictionsSpreadAsEachAlone) {
-  const Simulation<2> both = collapsed(kChannel + kLeft + kRight);
-  const double left = run_out(both, 0, true), right = run_out(both, 1, false);
-  const double left_alone = run_out(collapsed(kChannel + kLeft), 0, true);
-  const double right_alone = run_out(collapsed(kChannel + kRight), 0, false);
-  std::cout << "columns at " << kCollapseTime << " s: run-out with mu 0.2 = " << left
-            << " m (alone " << left_alone << " m, " << 100 * (left / left_alone - 1)
-            << "%), with mu 0.8 = " << right << " m (alone " << right_alone << " m, "
-            << 100 * (right / right_alone - 1) << "%)\n";
-  EXPECT_GT(left, 2 * right);
-  EXPECT_NEAR(left / left_alone, 1.0, 0.05);
-  EXPECT_NEAR(right / right_alone, 1.0, 0.05);
-  EXPECT_GT(kChannelWidth - left - right - 2 * kColumnWidth, 0.3) << "the columns came close";
+  constexpr int kSeeds = 5;
+  std::vector<double> left, right, left_alone, right_alone;
+  for (int seed = 1; seed <= kSeeds; ++seed) {
+    const Simulation<2> both = collapsed(seeded(kChannel + kLeft + kRight, seed));
+    left.push_back(run_out(both, 0, true));
+    right.push_back(run_out(both, 1, false));
+    left_alone.push_back(run_out(collapsed(seeded(kChannel + kLeft, seed)), 0, true));
+    right_alone.push_back(run_out(collapsed(seeded(kChannel + kRight, seed)), 0, false));
+    std::cout << "seed " << seed << ", columns at " << kCollapseTime
+              << " s: run-out with mu 0.2 = " << left.back() << " m (alone " << left_alone.back()
+              << " m), with mu 0.8 = " << right.back() << " m (alone " << right_alone.back()
+              << " m)\n";
+    EXPECT_GT(left.back(), 2 * right.back());
+    EXPECT_GT(kChannelWidth - left.back() - right.back() - 2 * kColumnWidth, 0.3)
+        << "the columns came close";
+  }
+  const auto compare = [&](const std::vector<double>& with, const std::vector<double>& alone,
+                           const char* name) {
+    const Ensemble a = ensemble(with), b = ensemble(alone);
+    const double se = std::sqrt((a.var + b.var) / kSeeds);
+    std::cout << name << ": mean run-out " << a.mean << " m beside the other column, " << b.mean
+              << " m alone (" << 100 * (a.mean / b.mean - 1) << "%), standard error of the "
+              << "difference " << se << " m\n";
+    EXPECT_NEAR(a.mean / b.mean, 1.0, 0.03) << name;
+    EXPECT_LE(std::abs(a.mean - b.mean), 3.0 * se) << name;
+  };
+  compare(left, left_alone, "mu 0.2");
+  compare(right, right_alone, "mu 0.8");
 }
 
 // ------------------------------------------------------------ bad materials
 
 struct BadBlock {
-  std::string extra;     // appended to kBase2D (line 9 on, inside its [[sand]] block)
-  std::string prefix;    // the message starts with "<where>: <key>: <what>"
-  std::string allowed;   // and ends with "; allowed: <this>"
+  std::string extra;    // appended to kBase2D (line 9 on, inside its [[sand]] block)
+  std::string prefix;   // the message starts with "<where>: <key>: <what>"
+  std::string allowed;  // and ends with "; allowed: <this>"
 };
 
 // The allowed-values cell of the docs/scenes.md row of `key`.
@@ -221,8 +268,7 @@ TEST(Materials, BadBlockValuesGetTheDocumentedErrors) {
       {"mu = 0\ncohesion = 10\n", "bad.toml:10: sand[0].cohesion: 10 needs friction",
        "cohesion = 0 when mu = 0"},
       {"mu = 0\n[material]\ncohesion = 10\n",
-       "bad.toml:9: sand[0].mu: 0 leaves no friction for the cohesion 10 of [material]",
-       "mu > 0"},
+       "bad.toml:9: sand[0].mu: 0 leaves no friction for the cohesion 10 of [material]", "mu > 0"},
       {"phi_max = 0.5\n", "bad.toml:9: sand[0].phi_max: scene-wide", "in [material]"},
       {"viscosity = 1\n", "bad.toml:9: sand[0].viscosity: scene-wide", "in [material]"},
       {"[[sand]]\nshape = \"box\"\nmin = [0.5, 0]\nmax = [0.6, 0.1]\nmu = -1\n",
@@ -320,7 +366,8 @@ min = [0.5, 0.2]
 max = [0.7, 0.3]
 velocity = [-1.0, 0.0]
 density = 1000
-)", "collision.toml");
+)",
+                                        "collision.toml");
   Simulation<2> sim(scene);
   const auto momentum = [&] {
     Vec<2> q = Vec<2>::Zero();
@@ -385,7 +432,8 @@ TEST(Materials, ResumedRunIsBitIdentical) {
   const fs::path dir = test::temp_dir("materials");
   const fs::path scene = dir / "pair.toml";
   write_file_atomic(scene.string(), kPair + "[time]\nframes = 3\nsubsteps = 2\n");
-  const std::string run = std::string(SABLIER_BINARY) + " run " + scene.string() + " --quiet --threads 1 --out ";
+  const std::string run =
+      std::string(SABLIER_BINARY) + " run " + scene.string() + " --quiet --threads 1 --out ";
   const auto sh = [](const std::string& line) { return test::shell(line).code; };
   ASSERT_EQ(sh(run + (dir / "a").string()), 0);
   ASSERT_EQ(sh(run + (dir / "b").string() + " --stop-after-frame 1"), 130);

@@ -326,6 +326,7 @@ StepInfo Simulation<D>::step(double dt) {
   info.timings.assembly = seconds_since(t0);
 
   t0 = Clock::now();
+  problem_.relaxation = scene_.solver.relaxation;
   info.solve = solve_gauss_seidel(problem_, scene_.solver.tolerance, scene_.solver.max_iterations,
                                   scene_.solver.anderson);
   info.timings.solve = seconds_since(t0);

@@ -65,6 +65,9 @@ struct SolverConfig {
   double tolerance = 1e-5;  // relative velocity change of the last sweep (docs/method.md)
   int max_iterations = 2000;
   int anderson = 5;  // Anderson acceleration depth; 0 = plain Gauss-Seidel
+  // The fraction of its local change a row that cycles between stick and
+  // slide takes (solver/relaxation.hpp); 1 = none.
+  double relaxation = 0.5;
   // The sand's stress rows are swept in zones of about this many rows, one
   // thread per zone (solver/zones.hpp); 0 = one zone. It sets the order of
   // the Gauss-Seidel updates, so results depend on it, not on the threads.

@@ -91,6 +91,7 @@ const std::vector<Field<SolverConfig>> kSolverFields{
     real("tolerance", &SolverConfig::tolerance, open(0, 1)),
     whole("max_iterations", &SolverConfig::max_iterations, closed(1, kInf)),
     whole("anderson", &SolverConfig::anderson, closed(0, 16)),
+    real("relaxation", &SolverConfig::relaxation, open_closed(0, 1)),
     whole("zone_rows", &SolverConfig::zone_rows, closed(0, kInf)),
     whole("decompaction_moves", &SolverConfig::decompaction_moves, closed(1, 16)),
 };

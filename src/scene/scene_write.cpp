@@ -178,8 +178,10 @@ std::string scene_to_toml(const SceneConfig& s) {
       num(m.cohesion_decay));
   if (m.mu_i) out += mu_i_line(*m.mu_i);
   out += fmt::format(
-      "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nzone_rows = {}\n",
-      num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, s.solver.zone_rows);
+      "\n[solver]\ntolerance = {}\nmax_iterations = {}\nanderson = {}\nrelaxation = {}\n"
+      "zone_rows = {}\n",
+      num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, num(s.solver.relaxation),
+      s.solver.zone_rows);
   out += fmt::format("decompaction = \"{}\"\ndecompaction_moves = {}\n",
                      decompaction_name(s.solver.decompaction), s.solver.decompaction_moves);
   out += "\n[boundary]\n";

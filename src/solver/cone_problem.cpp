@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "solver/anderson.hpp"
+#include "solver/relaxation.hpp"
 #include "solver/slide_batch.hpp"
 #include "solver/stencil.hpp"
 #include "solver/sweep_order.hpp"
@@ -138,14 +139,6 @@ inline void apply_change(ConeProblem<D>& p, int j, const SymVec<D>& dl) {
   p.lambda[j] += dl;
 }
 
-// Row j's update, given its new stress x in rotated coordinates and its old
-// one x_old (both rotated), and the apex shift of its cone along e_0.
-template <int D>
-inline void finish_row(ConeProblem<D>& p, int j, const SymVec<D>& x, const SymVec<D>& x_old,
-                       double shift) {
-  apply_change<D>(p, j, p.delassus[j].unrotated_change(x, x_old, shift));
-}
-
 // Rows of a thread's share of a colour that wait for their slide solve, which
 // slide_batch.hpp does eight at a time. Rows of one colour have disjoint
 // stencils, so deferring their updates to the end of the batch changes
@@ -163,9 +156,11 @@ struct SlideQueue {
     batch.solve();
     for (int l = 0; l < batch.size; ++l) {
       const int j = row[l];
+      SymVec<D> dl = p.delassus[j].unrotated_change(batch.solution(l), x_old[l], shift[l]);
+      relax<D>(p, j, DPCase::Slide, dl);
       p.state[j] = DPCase::Slide;
       p.beta[j] = batch.beta[l];
-      finish_row<D>(p, j, batch.solution(l), x_old[l], shift[l]);
+      apply_change<D>(p, j, dl);
     }
     batch.size = 0;
   }
@@ -269,6 +264,7 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
         dl[r] = W.unrotated_change(x, x_old, p.cohesion[row]);
         solved[r] = true;
       }
+      relax<D>(p, row, result[r], dl[r]);
       p.state[row] = result[r];
       p.beta[row] = 0.0;
       if constexpr (!kPasses) apply_change<D>(p, row, dl[r]);
@@ -428,6 +424,8 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   // cases of an earlier step, which a resumed run does not have, must not
   // steer it.
   std::fill(p.state.begin(), p.state.end(), DPCase::Separation);
+  p.flips.assign(n, 0);
+  p.calm.assign(n, 0);
   add_stress_velocities<D>(p);  // warm start
   AndersonMixer<D> mixer(anderson_depth, n, blocks);
   const bool plain = mixer.depth() <= 0;

@@ -100,6 +100,12 @@ struct ConeProblem {
   std::vector<Unrotated> unrotated;
   std::vector<DPCase> state;
   std::vector<double> beta;           // plastic multiplier of the last local solve (guess for the next)
+  // Under-relaxation of the rows that cycle between stick and slide
+  // (solver/relaxation.hpp): the fraction of its local change such a row
+  // takes (1: none, the plain update), and each row's recent flips and
+  // updates since its last flip, kept by the solver.
+  double relaxation = 1.0;
+  std::vector<unsigned char> flips, calm;
 
   // Contact rows (frictional obstacles, METHOD.md section 3): rows
   // [first_contact, rows()) act on their own node only (coupling: the centre
