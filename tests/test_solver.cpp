@@ -27,19 +27,16 @@ using test::scene;
 template <int D>
 std::vector<Vec<D>> first_step(const char* name, const std::string& resolution, const char* tol,
                                int depth, int* sweeps) {
-  Simulation<D> sim(scene(name, {"grid.resolution=" + resolution, std::string("solver.tolerance=") + tol,
-                                 "solver.max_iterations=30000", "solver.anderson=" + std::to_string(depth)}));
+  Simulation<D> sim(
+      scene(name, {"grid.resolution=" + resolution, std::string("solver.tolerance=") + tol,
+                   "solver.max_iterations=30000", "solver.anderson=" + std::to_string(depth)}));
   const StepInfo info = sim.step(sim.adaptive_dt(1.0 / 30));
-  EXPECT_FALSE(info.solve.hit_cap) << name << " depth " << depth << " residual " << info.solve.residual;
+  EXPECT_FALSE(info.solve.hit_cap)
+      << name << " depth " << depth << " residual " << info.solve.residual;
   *sweeps = info.solve.iterations;
   // Every row's stress lies in its (cohesionless) cone: |lambda_T| <= a lambda_N.
-  const ConeProblem<D>& p = sim.problem();
-  for (int j = 0; j < p.rows(); ++j) {
-    const SymVec<D>& l = p.lambda[j];
-    const double tangential = l.tail(sym_size(D) - 1).norm();
-    EXPECT_LE(tangential, p.aperture[j] * l[0] + 1e-10 * std::abs(l[0]) + 1e-12)
-        << name << " depth " << depth << " row " << j;
-  }
+  test::expect_stresses_in_cones(sim.problem(),
+                                 std::string(name) + " depth " + std::to_string(depth));
   return sim.problem().velocity;
 }
 
@@ -123,10 +120,7 @@ TEST(Solver, CappedSolveReturnsItsBestLateIterate2D) {
     scale = std::max(scale, q.velocity[i].norm());
   }
   EXPECT_LT(diff, 1e-10 * scale);
-  for (int j = 0; j < q.rows(); ++j) {
-    const SymVec<2>& l = q.lambda[j];
-    EXPECT_LE(l.tail(2).norm(), q.aperture[j] * l[0] + 1e-10 * std::abs(l[0]) + 1e-12) << "row " << j;
-  }
+  test::expect_stresses_in_cones(q, "capped solve");
 }
 
 }  // namespace

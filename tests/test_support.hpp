@@ -122,6 +122,19 @@ SceneConfig small_block_only(SceneConfig s, const Vec3d& corner) {
   return s;
 }
 
+// Every stress row of p lies in its cone, |lambda_T| <= a (lambda_N + c)
+// (a the row's aperture, c its cohesion, the apex's shift along e_0), to
+// 1e-10 relative; `what` names the problem in failures.
+template <int D>
+void expect_stresses_in_cones(const ConeProblem<D>& p, const std::string& what) {
+  for (int j = 0; j < p.rows(); ++j) {
+    SymVec<D> x = p.lambda[j];
+    x[0] += p.cohesion[j];
+    EXPECT_LE(x.tail(sym_size(D) - 1).norm(), p.aperture[j] * x[0] + 1e-10 * std::abs(x[0]) + 1e-12)
+        << what << " row " << j;
+  }
+}
+
 // Runs to time t with adaptive steps, each within at most `max_dt` (a
 // frame, say) of the remaining time; checks every step's solver report
 // (the residual is below the tolerance, or the step says it hit the cap).
