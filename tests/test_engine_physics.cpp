@@ -4,12 +4,12 @@
 // Mohr-Coulomb limit of an inclined layer, and the laboratory trend of the
 // column collapse.
 #include <gtest/gtest.h>
-
-#include <algorithm>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
 
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
@@ -170,6 +170,33 @@ TEST(Physics, MovedGrainsHoldPhiMax) {
   EXPECT_LT(p99, 1.05 * 0.6);
 }
 
+// StepInfo::overfill (stats.csv's column), the grain volume beyond phi_max as
+// a fraction of all of it, against its definition where the answer is
+// exact: sand filling the whole box on the regular lattice puts phi_max V_j
+// at every node (the Q1 shape functions sum to one, and at a wall both the
+// node's volume and its grains halve), so with every grain's volume scaled
+// by f and nothing moving (no gravity; the pure clamp, which moves no grain)
+// the overfill is (f - 1) / f, and 0 for f <= 1.
+template <int D>
+void overfill_of_scaled_grains(const char* file, const std::string& size) {
+  for (double f : {0.8, 1.0, 1.25, 2.0}) {
+    Simulation<D> sim(
+        scene(file, {"gravity=[0.0,0.0" + std::string(D == 3 ? ",0.0]" : "]"),
+                     std::string("sand.0.min=[0.0,0.0") + (D == 3 ? ",0.0]" : "]"),
+                     "sand.0.max=" + size, "sand.0.jitter=0.0", "solver.decompaction=\"clamp\""}));
+    for (double& v : sim.particles().volume) v *= f;
+    const StepInfo info = sim.step(0.01);
+    EXPECT_NEAR(info.overfill, std::max(0.0, (f - 1.0) / f), 1e-12) << file << ", f = " << f;
+  }
+}
+
+TEST(Physics, OverfillIsTheGrainVolumeBeyondPhiMax2D) {
+  overfill_of_scaled_grains<2>("bed2d.toml", "[1.0,0.5]");
+}
+TEST(Physics, OverfillIsTheGrainVolumeBeyondPhiMax3D) {
+  overfill_of_scaled_grains<3>("bed3d.toml", "[0.5,0.25,0.35]");
+}
+
 // The same bound with cohesion, which shifts the cone's apex to a tension:
 // the supplement's proof still applies (lambda + c e_0 in the cone gives
 // lambda.gamma = -c gamma_N <= 0) provided cohesive nodes have no room to
@@ -184,15 +211,15 @@ TEST(Physics, MovedGrainsHoldPhiMax) {
 // tolerance 1e-6, none at 1e-8; with 3, 5.3e-10 E at 1e-8, which the slack's
 // advection term covers, check_energy_bound), hence its tighter tolerance.
 TEST(Physics, EnergyNeverGrowsWithCohesion) {
-  const SceneConfig block = scene(
-      "cohesive_block2d.toml", {"boundary.ymax=\"slip\"", "solver.tolerance=1e-8",
-                                "solver.max_iterations=20000", "material.cohesion=30000",
-                                "material.cohesion_decay=0", "grid.resolution=[100,30]"});
+  const SceneConfig block =
+      scene("cohesive_block2d.toml",
+            {"boundary.ymax=\"slip\"", "solver.tolerance=1e-8", "solver.max_iterations=20000",
+             "material.cohesion=30000", "material.cohesion_decay=0", "grid.resolution=[100,30]"});
   EXPECT_LE(check_energy_bound(block, 0.15), 1.0);
   const SceneConfig column =
-      scene("collapse2d.toml", {"boundary.ymax=\"slip\"", "solver.tolerance=1e-6",
-                                "solver.max_iterations=20000", "time.cfl=0.5",
-                                "material.cohesion=400", "material.cohesion_decay=2"});
+      scene("collapse2d.toml",
+            {"boundary.ymax=\"slip\"", "solver.tolerance=1e-6", "solver.max_iterations=20000",
+             "time.cfl=0.5", "material.cohesion=400", "material.cohesion_decay=2"});
   EXPECT_LT(check_energy_bound(column, 0.6), 1.0);
 }
 
@@ -231,7 +258,8 @@ TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets) {
       weight = gamma * height * height / std::tan(theta) / 2;
       length = height / std::sin(theta);
     }
-    const double c_mc = weight * (std::sin(theta) - std::cos(theta) * mu / std::cos(friction_angle)) / length;
+    const double c_mc =
+        weight * (std::sin(theta) - std::cos(theta) * mu / std::cos(friction_angle)) / length;
     falls_below = std::max(falls_below, c_mc * std::cos(friction_angle) / phi_max);
   }
   std::cout << "cohesive column: falls below " << falls_below << " Pa, stands above "
@@ -256,9 +284,9 @@ TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets) {
 // dissipates, so the layer sloshes between the walls like an inviscid
 // liquid; a small viscosity (2 Pa s) damps the sloshing within 4 s.
 TEST(Physics, FrictionlessColumnBecomesAFlatLayer) {
-  SceneConfig s = scene("collapse2d.toml",
-                        {"material.mu=0", "material.viscosity=2", "grid.resolution=[80,20]",
-                         "sand.0.max=[0.2,0.2]", "boundary.xmax=\"slip\""});
+  SceneConfig s =
+      scene("collapse2d.toml", {"material.mu=0", "material.viscosity=2", "grid.resolution=[80,20]",
+                                "sand.0.max=[0.2,0.2]", "boundary.xmax=\"slip\""});
   Simulation<2> sim(s);
   run_until(sim, 4.0);
   const double h = sim.grid().h();
@@ -288,8 +316,8 @@ TEST(Physics, FrictionlessColumnBecomesAFlatLayer) {
 // which no stress in the cone balances the layer's own slope).
 double tilted_layer_speed(double theta_deg, double mu, bool free_end, double t) {
   const double th = theta_deg * M_PI / 180.0;
-  const std::string gravity =
-      "gravity=[" + std::to_string(9.81 * std::sin(th)) + "," + std::to_string(-9.81 * std::cos(th)) + "]";
+  const std::string gravity = "gravity=[" + std::to_string(9.81 * std::sin(th)) + "," +
+                              std::to_string(-9.81 * std::cos(th)) + "]";
   SceneConfig s = scene("collapse2d.toml",
                         {"grid.resolution=[80,20]", "sand.0.max=[1.0,0.1]", gravity,
                          "material.mu=" + std::to_string(mu),
@@ -324,8 +352,9 @@ TEST(Physics, CollapseRunOutGrowsWithAspectRatio) {
   double previous = 0.0;
   for (const double a : {0.5, 1.0, 2.0}) {
     const double l0 = h0 / a;
-    SceneConfig s = scene("collapse2d.toml", {"grid.resolution=[100,25]",
-                                              "sand.0.max=[" + std::to_string(l0) + "," + std::to_string(h0) + "]"});
+    SceneConfig s =
+        scene("collapse2d.toml", {"grid.resolution=[100,25]", "sand.0.max=[" + std::to_string(l0) +
+                                                                  "," + std::to_string(h0) + "]"});
     Simulation<2> sim(s);
     // The front is the 99th percentile of the grains' x, not the farthest
     // grain: a lone grain ahead of the deposit slides on a layer one particle
@@ -355,7 +384,8 @@ TEST(Physics, CollapseRunOutGrowsWithAspectRatio) {
       const auto& P = sim.particles();
       std::vector<std::pair<double, double>> e;  // (speed, kinetic energy)
       for (std::size_t p = 0; p < P.size(); ++p)
-        e.push_back({P.velocity[p].norm(), 0.5 * s.material.density * P.volume[p] * P.velocity[p].squaredNorm()});
+        e.push_back({P.velocity[p].norm(),
+                     0.5 * s.material.density * P.volume[p] * P.velocity[p].squaredNorm()});
       std::sort(e.begin(), e.end());
       double sum = 0.0;
       for (std::size_t k = 0; k < e.size() - e.size() / 100; ++k) sum += e[k].second;
@@ -365,8 +395,8 @@ TEST(Physics, CollapseRunOutGrowsWithAspectRatio) {
     run_until(sim, 1.5);
     const double runout = (front() - l0) / l0;
     std::cout << "collapse a = " << a << ": run-out (L - L0)/L0 = " << runout
-              << ", KE(1.5 s)/peak = " << sim.kinetic_energy() / peak
-              << " (bulk " << bulk_kinetic_energy() / peak << ")"
+              << ", KE(1.5 s)/peak = " << sim.kinetic_energy() / peak << " (bulk "
+              << bulk_kinetic_energy() / peak << ")"
               << ", front moved " << front() - front_early << " m in the last 0.3 s"
               << ", max grain speed " << sim.max_speed() << " m/s\n";
     EXPECT_LT(bulk_kinetic_energy(), 1e-3 * peak) << "a = " << a << " still moving";

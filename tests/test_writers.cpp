@@ -63,8 +63,8 @@ TEST(Writers, VtpRoundTrip) {
   for (VtkCompression c : {VtkCompression::None, VtkCompression::Zlib})
     for (int d : {2, 3})
       for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(57), kBig}) {
-        SCOPED_TRACE(::testing::Message() << "zlib " << (c == VtkCompression::Zlib) << ", "
-                                          << d << "D, " << n << " particles");
+        SCOPED_TRACE(::testing::Message() << "zlib " << (c == VtkCompression::Zlib) << ", " << d
+                                          << "D, " << n << " particles");
         const ParticleFrame f = sample(d, n);
         const std::string path = (dir / "f.vtp").string();
         const std::string vtp = format_vtp(f, c);
@@ -161,7 +161,8 @@ TEST(Writers, CsvHeaderAndValues) {
 }
 
 TEST(Writers, PvdListsFrames) {
-  const std::string pvd = format_pvd({{0.0, "frames/particles_00000.vtp"}, {0.5, "frames/particles_00001.vtp"}});
+  const std::string pvd =
+      format_pvd({{0.0, "frames/particles_00000.vtp"}, {0.5, "frames/particles_00001.vtp"}});
   EXPECT_NE(pvd.find("timestep=\"0.5\" group=\"\" part=\"0\" file=\"frames/particles_00001.vtp\""),
             std::string::npos);
   EXPECT_NE(pvd.find("type=\"Collection\""), std::string::npos);
@@ -178,6 +179,7 @@ TEST(Writers, StatsRoundTrip) {
   s.kinetic_energy = 1.0 / 7;
   s.hit_cap = true;
   s.decompaction_work = 2.0 / 3;
+  s.overfill = 1.0 / 9;
   t.add(s);
   const std::string csv = t.csv();
   const auto rows = parse_stats_csv(csv);
@@ -187,17 +189,24 @@ TEST(Writers, StatsRoundTrip) {
   EXPECT_EQ(rows[0].iterations, 17);
   EXPECT_TRUE(rows[0].hit_cap);
   EXPECT_EQ(rows[0].decompaction_work, s.decompaction_work);
-  // A file of a build before decompaction_work (16 columns) still reads, the
-  // missing column as NaN, so that such a run can be resumed.
-  const std::string old_header =
-      std::string(kStatsHeader).substr(0, std::string(kStatsHeader).rfind(','));
-  const std::string line = csv.substr(csv.find('\n') + 1);
-  const std::string old = old_header + "\n" + line.substr(0, line.rfind(',')) + "\n";
-  const auto old_rows = parse_stats_csv(old);
-  ASSERT_EQ(old_rows.size(), 1u);
-  EXPECT_EQ(old_rows[0].iterations, 17);
-  EXPECT_TRUE(std::isnan(old_rows[0].decompaction_work));
-  EXPECT_EQ(parse_stats_csv_until(old, 3).size(), 1u);
+  EXPECT_EQ(rows[0].overfill, s.overfill);
+  // Files of builds before overfill (17 columns) and before
+  // decompaction_work (16) still read, the missing columns as NaN, so that
+  // such a run can be resumed.
+  std::string old_header = kStatsHeader, line = csv.substr(csv.find('\n') + 1);
+  line.pop_back();  // its newline
+  std::string old;
+  for (int dropped = 1; dropped <= 2; ++dropped) {
+    old_header = old_header.substr(0, old_header.rfind(','));
+    line = line.substr(0, line.rfind(','));
+    old = old_header + "\n" + line + "\n";
+    const auto old_rows = parse_stats_csv(old);
+    ASSERT_EQ(old_rows.size(), 1u) << dropped;
+    EXPECT_EQ(old_rows[0].iterations, 17);
+    EXPECT_TRUE(std::isnan(old_rows[0].overfill));
+    EXPECT_EQ(std::isnan(old_rows[0].decompaction_work), dropped == 2);
+    EXPECT_EQ(parse_stats_csv_until(old, 3).size(), 1u);
+  }
   EXPECT_THROW(parse_stats_csv(old_header + ",extra\n"), IoError);
 }
 

@@ -20,6 +20,10 @@ struct StepStats {
   // may have added in the step (StepInfo::restoring_work); NaN in the rows
   // of a file written before the column existed.
   double decompaction_work = 0.0;
+  // The grain volume beyond phi_max after the step, as a fraction of all of
+  // it (StepInfo::overfill); NaN in the rows of a file written before the
+  // column existed.
+  double overfill = 0.0;
 };
 
 class StatsTable {
@@ -72,8 +76,8 @@ struct BodyRow {
   int obstacle = 0;
   double centre[3] = {0, 0, 0};
   double velocity[3] = {0, 0, 0};
-  double spin[3] = {0, 0, 0};  // 2D: spin[0] = omega
-  double angle = 0.0;          // 2D only: rad, counter-clockwise
+  double spin[3] = {0, 0, 0};           // 2D: spin[0] = omega
+  double angle = 0.0;                   // 2D only: rad, counter-clockwise
   double quaternion[4] = {1, 0, 0, 0};  // 3D only: orientation (w, x, y, z)
 };
 

@@ -98,6 +98,7 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
     return true;
   };
   move_lift_.assign(n, 0.0);
+  moves_settled_ = false;
   for (int move = 0; move < moves; ++move) {
     grain_volume_at_positions();
     bool crowded = false;
@@ -108,7 +109,10 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       move_excess_[i] = std::max(0.0, move_excess_[i] / full - 1.0);
       crowded = crowded || move_excess_[i] > 0.0;
     }
-    if (!crowded) break;  // no node over-full: every move would be zero
+    if (!crowded) {  // no node over-full: every move would be zero
+      moves_settled_ = true;
+      break;
+    }
 #pragma omp parallel for schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {
       const std::int64_t base = move_base_[p];
@@ -146,6 +150,18 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
   double lift = 0.0;  // in particle order
   for (double w : move_lift_) lift += w;
   return lift;
+}
+
+template <int D>
+double Simulation<D>::overfill() const {
+  double over = 0.0, all = 0.0;  // in node order: the same bits whatever the thread count
+  for (std::int64_t i = 0; i < grid_.node_count(); ++i) {
+    const double v = move_excess_[i];
+    if (!(v > 0.0)) continue;
+    all += v;
+    over += std::max(0.0, v - phi_max_ * grid_.node_volume(grid_.node_coords(i)));
+  }
+  return all > 0.0 ? over / all : 0.0;
 }
 
 namespace {
@@ -327,7 +343,8 @@ template double Simulation<3>::project_grains_apart(int, double);
   template void Simulation<D>::project_assemble();                                    \
   template void Simulation<D>::project_potentials();                                  \
   template void Simulation<D>::project_move(const std::vector<Obstacle<D>>&, double); \
-  template void Simulation<D>::grain_volume_at_positions();
+  template void Simulation<D>::grain_volume_at_positions();                           \
+  template double Simulation<D>::overfill() const;
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
 #undef SABLIER_INSTANTIATE

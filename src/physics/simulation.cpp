@@ -358,11 +358,19 @@ StepInfo Simulation<D>::step(double dt) {
   }
   move_bodies(dt);
   transfer_to_particles(dt);
-  if (scene_.solver.decompaction == Decompaction::Move)
-    info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
+  const bool moves = scene_.solver.decompaction == Decompaction::Move;
+  if (moves) info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
   if (scene_.solver.decompaction == Decompaction::Project) {
     info.restoring_work += project_grains_apart(scene_.solver.decompaction_moves, dt);
     info.crowding = project_left_;
+  }
+  // Moves that stopped early found no node over-full; the projection ends
+  // with Phi at the grains' final positions.
+  if (moves && moves_settled_) {
+    info.overfill = 0.0;
+  } else {
+    if (scene_.solver.decompaction != Decompaction::Project) grain_volume_at_positions();
+    info.overfill = overfill();
   }
   info.timings.advection = seconds_since(t0);
 

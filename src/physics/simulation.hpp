@@ -44,6 +44,14 @@ struct StepInfo {
   // phi_max V_j (above 1e-3 only where the grains cannot get out of the
   // way: sand confined by a solid pressing on it).
   double crowding = 0.0;
+  // The grains' volume beyond phi_max at the end of the step (after the
+  // decompaction), as a fraction of all of it: sum_j max(0, Phi_j -
+  // phi_max V_j) / sum_j Phi_j, Phi_j the grain volume at node j (Q1
+  // weights). A percent or two where the decompaction keeps up; it grows
+  // when the steps crowd grains faster than the moves spread them (a
+  // `time.cfl` above 1 on fine grids), or under solver.decompaction =
+  // "clamp".
+  double overfill = 0.0;
   // Force the sand exerts on each [[obstacle]] over the step (N; N/m in 2D),
   // the reaction to the obstacle rows' stresses.
   std::vector<Vec3d> obstacle_force;
@@ -172,6 +180,8 @@ class Simulation {
   // Phi_i at the grains' present positions into move_excess_ (and each
   // grain's cell base node into move_base_, -1 outside the box).
   void grain_volume_at_positions();
+  // StepInfo::overfill from the Phi_j that grain_volume_at_positions left.
+  double overfill() const;
   void emit_from_spouts(double start);  // sources: particles entering during the step
   bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;
   bool kept_by_walls(const Vec<D>& x) const;
@@ -264,6 +274,7 @@ class Simulation {
   // grain, the lift and its cell's base node.
   std::vector<double> move_excess_, move_lift_;
   std::vector<std::int64_t> move_base_;
+  bool moves_settled_ = false;  // the last moves stopped with no node over-full
   // project_grains_apart: per node, its 3^d row of L (node to node,
   // sum_p V_p grad N_j . grad N_k), its capacity and potential; the nodes
   // holding grains, by colour (coordinate parities).
