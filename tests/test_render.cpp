@@ -67,6 +67,37 @@ TEST(Render, PngRoundTripsThroughLibpng) {
   EXPECT_EQ(d.rgb, c.pixels());
 }
 
+// `sablier plot` adds a panel for the grains' volume beyond phi_max when
+// stats.csv has the column (five panels), and keeps four for a file of an
+// older build. Counted on the picture: the panels' frames are the only dark
+// vertical runs taller than a line of text (30 pixels) down the left margin.
+TEST(Render, PlotShowsTheOverfillWhenTheColumnIsThere) {
+  const std::string head = "step,time,kinetic_energy,potential_energy,iterations,residual,";
+  const std::string with = head + "wall_seconds,overfill\n1,0.1,1,2,10,1e-6,0.01,0.02\n" +
+                           "2,0.2,0.5,1.5,12,2e-6,0.02,0.03\n";
+  const std::string without =
+      head + "wall_seconds\n1,0.1,1,2,10,1e-6,0.01\n2,0.2,0.5,1.5,12,2e-6,0.02\n";
+  const StatsSeries a = parse_stats_series(with, "a.csv"), b = parse_stats_series(without, "b.csv");
+  ASSERT_EQ(a.overfill.size(), 2u);
+  EXPECT_EQ(a.overfill[1], 0.03);
+  EXPECT_TRUE(b.overfill.empty());
+  const auto frames = [](const Canvas& c) {
+    const int x = (8 * kGlyphAdvance + 6) * 2;  // the left margin at 2 pixels per font pixel
+    int frames = 0, run = 0;
+    for (int y = 0; y <= c.height(); ++y) {
+      if (y < c.height() && c.at(x, y) == Rgb{40, 40, 40}) {
+        ++run;
+        continue;
+      }
+      frames += run >= 30;
+      run = 0;
+    }
+    return frames;
+  };
+  EXPECT_EQ(frames(plot_stats(a)), 5);
+  EXPECT_EQ(frames(plot_stats(b)), 4);
+}
+
 TEST(Render, ViridisMatchesMatplotlib) {
   // Entries 0, 128 and 255 of matplotlib's table as 8-bit colours.
   EXPECT_EQ(viridis(0.0), (Rgb{68, 1, 84}));
@@ -194,7 +225,8 @@ TEST(Render, ThreeDFramesShowTheBoxAndShadedGrains) {
     // Every corner of the box is on a drawn edge (no grain hides them here).
     for (int corner = 0; corner < 8; ++corner) {
       const double p[3] = {corner & 1 ? 1.0 : 0.0, corner & 2 ? 0.1 : 0.0, corner & 4 ? 0.25 : 0.0};
-      EXPECT_TRUE(ink_near(c, cam.project(p))) << "view " << view.azimuth << "," << view.elevation << " corner " << corner;
+      EXPECT_TRUE(ink_near(c, cam.project(p)))
+          << "view " << view.azimuth << "," << view.elevation << " corner " << corner;
     }
     // The grains are drawn, shaded: not background at the first grain's centre.
     const Camera::Point g = cam.project(&f.position[0]);
@@ -363,11 +395,14 @@ TEST(Render, ViewsByNameOrAngles) {
   ASSERT_TRUE(parse_view("-37.5,12", &v));
   EXPECT_EQ(v.azimuth, -37.5);
   EXPECT_EQ(v.elevation, 12.0);
-  for (const char* bad : {"", "30", "30,", ",30", "a,b", "0,91", "0,-90.5", "nan,0", "0,inf", "1,2,3"})
+  for (const char* bad :
+       {"", "30", "30,", ",30", "a,b", "0,91", "0,-90.5", "nan,0", "0,inf", "1,2,3"})
     EXPECT_FALSE(parse_view(bad, &v)) << '"' << bad << '"';
   // Each name is the camera its documented angles give (docs/render.md).
   for (const auto& [name, angles] : {std::pair<const char*, const char*>{"front", "0,0"},
-                                     {"side", "-90,0"}, {"top", "0,90"}, {"iso", "30,30"}}) {
+                                     {"side", "-90,0"},
+                                     {"top", "0,90"},
+                                     {"iso", "30,30"}}) {
     View a, b;
     ASSERT_TRUE(parse_view(name, &a));
     ASSERT_TRUE(parse_view(angles, &b));
@@ -562,9 +597,10 @@ TEST(RenderCli, AnimationsAreRealWithDebianTools) {
   const Result frames = shell("identify -format '%wx%h\n' " + gif.string());
   ASSERT_EQ(frames.code, 0) << frames.output;
   EXPECT_EQ(frames.output, "64x47\n64x47\n64x47\n");
-  const Result probe = shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                             "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " +
-                             mp4.string());
+  const Result probe = shell(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=codec_name,width,height,nb_read_frames -of csv=p=0 " +
+      mp4.string());
   ASSERT_EQ(probe.code, 0) << probe.output;
   // The odd height is padded to an even one, as H.264 requires.
   EXPECT_EQ(probe.output, "h264,64,48,3\n");

@@ -197,14 +197,19 @@ StatsSeries parse_stats_series(const std::string& csv, const std::string& source
     if (it == header.end()) throw IoError(source + ": no column \"" + name + "\" in the header");
     index.push_back(static_cast<std::size_t>(it - header.begin()));
   }
+  // Optional: files of older builds lack it.
+  const auto over = std::find(header.begin(), header.end(), "overfill");
+  const std::size_t over_index = static_cast<std::size_t>(over - header.begin());
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     const std::vector<std::string> cells = split(line);
-    for (std::size_t k = 0; k < index.size(); ++k) {
-      if (index[k] >= cells.size())
+    const auto value = [&](std::size_t i) {
+      if (i >= cells.size())
         throw IoError(source + ":" + std::to_string(number) + ": too few columns");
-      wanted[k].second->push_back(column_value(cells[index[k]], source, number));
-    }
+      return column_value(cells[i], source, number);
+    };
+    for (std::size_t k = 0; k < index.size(); ++k) wanted[k].second->push_back(value(index[k]));
+    if (over != header.end()) out.overfill.push_back(value(over_index));
   }
   return out;
 }
@@ -215,27 +220,33 @@ Canvas plot_stats(const StatsSeries& st, int width, int height) {
   std::vector<double> total(st.kinetic_energy.size());
   for (std::size_t k = 0; k < total.size() && k < st.potential_energy.size(); ++k)
     total[k] = st.kinetic_energy[k] + st.potential_energy[k];
-  const Panel panels[] = {
+  std::vector<double> percent(st.overfill.size());
+  for (std::size_t k = 0; k < percent.size(); ++k) percent[k] = 100.0 * st.overfill[k];
+  std::vector<Panel> panels = {
       {"energy J",
        {{&total, kBlue, "kinetic+potential"}, {&st.kinetic_energy, kOrange, "kinetic"}}},
       {"solver iterations per step", {{&st.iterations, kBlue, ""}}},
       {"residual", {{&st.residual, kBlue, ""}}, true},
-      {"wall seconds per step", {{&st.wall_seconds, kBlue, ""}}},
   };
+  if (!st.overfill.empty())
+    panels.push_back({"grain volume beyond phi_max %", {{&percent, kBlue, ""}}});
+  panels.push_back({"wall seconds per step", {{&st.wall_seconds, kBlue, ""}}});
+  const int count = static_cast<int>(panels.size());
   // Room for 8-character tick labels on the left, a title row above and
   // tick labels below each panel, and the time axis caption at the bottom.
   // The right margin leaves room for half of the last time label.
   const int left = (8 * kGlyphAdvance + 6) * s, right = 16 * s;
   const int title = kGlyphHeight * s + 8 * s, below = kGlyphHeight * s + 8 * s;
   const int caption = kGlyphHeight * s + 6 * s;
-  const int panel_h = (height - caption) / 4;
+  const int panel_h = (height - caption) / count;
   double tlo = 0.0, thi = 0.0;
   for (double t : st.time) tlo = std::min(tlo, t), thi = std::max(thi, t);
   const std::vector<double> xticks = nice_ticks(tlo, thi, 6);
   const Axis ax{xticks.front(), xticks.back(), left, width - right};
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < count; ++k) {
     const Rect r{left, k * panel_h + title, width - right, (k + 1) * panel_h - below};
-    if (r.y1 - r.y0 < 10) throw IoError("plot: the picture is too small for four panels");
+    if (r.y1 - r.y0 < 10)
+      throw IoError("plot: the picture is too small for " + std::to_string(count) + " panels");
     draw_panel(c, r, st.time, ax, xticks, panels[k], s);
   }
   const std::string xlabel = "time s";

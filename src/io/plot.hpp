@@ -11,6 +11,9 @@ namespace sablier {
 // The columns of stats.csv that the plot shows, one entry per step.
 struct StatsSeries {
   std::vector<double> time, kinetic_energy, potential_energy, iterations, residual, wall_seconds;
+  // The grains' volume beyond phi_max, a fraction; empty for a file of a
+  // build before the column.
+  std::vector<double> overfill;
 };
 
 // Reads stats.csv text, finding the columns by their header names (extra
@@ -18,8 +21,10 @@ struct StatsSeries {
 // naming `source` and the line.
 StatsSeries parse_stats_series(const std::string& csv, const std::string& source);
 
-// Four stacked panels against time: kinetic + potential and kinetic energy,
-// solver iterations per step, residual (log scale), wall seconds per step.
+// Stacked panels against time: kinetic + potential and kinetic energy,
+// solver iterations per step, residual (log scale), the grains' volume
+// beyond phi_max in percent (when the file has the column), wall seconds
+// per step.
 Canvas plot_stats(const StatsSeries& stats, int width = 800, int height = 900);
 
 // Tick positions for an axis over [lo, hi]: multiples of 1, 2 or 5 x 10^k,
