@@ -67,37 +67,6 @@ TEST(Render, PngRoundTripsThroughLibpng) {
   EXPECT_EQ(d.rgb, c.pixels());
 }
 
-// `sablier plot` adds a panel for the grains' volume beyond phi_max when
-// stats.csv has the column (five panels), and keeps four for a file of an
-// older build. Counted on the picture: the panels' frames are the only dark
-// vertical runs taller than a line of text (30 pixels) down the left margin.
-TEST(Render, PlotShowsTheOverfillWhenTheColumnIsThere) {
-  const std::string head = "step,time,kinetic_energy,potential_energy,iterations,residual,";
-  const std::string with = head + "wall_seconds,overfill\n1,0.1,1,2,10,1e-6,0.01,0.02\n" +
-                           "2,0.2,0.5,1.5,12,2e-6,0.02,0.03\n";
-  const std::string without =
-      head + "wall_seconds\n1,0.1,1,2,10,1e-6,0.01\n2,0.2,0.5,1.5,12,2e-6,0.02\n";
-  const StatsSeries a = parse_stats_series(with, "a.csv"), b = parse_stats_series(without, "b.csv");
-  ASSERT_EQ(a.overfill.size(), 2u);
-  EXPECT_EQ(a.overfill[1], 0.03);
-  EXPECT_TRUE(b.overfill.empty());
-  const auto frames = [](const Canvas& c) {
-    const int x = (8 * kGlyphAdvance + 6) * 2;  // the left margin at 2 pixels per font pixel
-    int frames = 0, run = 0;
-    for (int y = 0; y <= c.height(); ++y) {
-      if (y < c.height() && c.at(x, y) == Rgb{40, 40, 40}) {
-        ++run;
-        continue;
-      }
-      frames += run >= 30;
-      run = 0;
-    }
-    return frames;
-  };
-  EXPECT_EQ(frames(plot_stats(a)), 5);
-  EXPECT_EQ(frames(plot_stats(b)), 4);
-}
-
 TEST(Render, ViridisMatchesMatplotlib) {
   // Entries 0, 128 and 255 of matplotlib's table as 8-bit colours.
   EXPECT_EQ(viridis(0.0), (Rgb{68, 1, 84}));
