@@ -78,6 +78,48 @@ void guessed_multiplier(std::uint64_t seed) {
 TEST(DruckerPrager, GuessedMultiplier2D) { guessed_multiplier<3>(11); }
 TEST(DruckerPrager, GuessedMultiplier3D) { guessed_multiplier<6>(12); }
 
+// A row whose traction decays towards zero step after step keeps a slide
+// multiplier that grows without bound (a body's unloaded second contact
+// with a wall, on W's scale 1e-6: beta 1e85 within a few steps). Evaluated
+// at such a beta, the 2D form of x(beta) overflowed into a NaN, which the
+// body then carried. Whatever the guess, up to 1e300, the answer must be a
+// point of DP(a), the unguessed one (W scaled down to 1e-6 as there).
+template <int S>
+void absurd_guess(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), mu(0.05, 1.5);
+  int slides = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const MatS<S> Wm = 1e-6 * random_spd<S>(rng);
+    LocalDelassus<S> W;
+    W.set(Wm);
+    VecS<S> b;
+    for (int k = 0; k < S; ++k) b[k] = 1e-10 * u(rng);
+    b[0] = -std::abs(b[0]);
+    const double a = mu(rng);
+    const VecS<S> br = W.rotate(b);
+    VecS<S> x0;
+    double beta0 = 0.0;
+    if (solve_drucker_prager_rotated<S>(W, br, a, x0, beta0) != DPCase::Slide) continue;
+    ++slides;
+    for (double guess : {1e30, 1e85, 1e200, 1e300}) {
+      VecS<S> x;
+      double beta = guess;
+      ASSERT_EQ(solve_drucker_prager_rotated<S>(W, br, a, x, beta), DPCase::Slide);
+      ASSERT_TRUE(x.allFinite()) << "trial " << trial << ", guess " << guess;
+      ASSERT_TRUE(in_drucker_prager<S>(Wm, b, a, W.unrotate(x)))
+          << "trial " << trial << ", guess " << guess;
+      if (S == 3) {
+        EXPECT_LE((x - x0).norm(), kTol * x0.norm()) << "trial " << trial << ", guess " << guess;
+      }
+    }
+  }
+  EXPECT_GT(slides, 100);
+}
+
+TEST(DruckerPrager, AbsurdGuessedMultiplier2D) { absurd_guess<3>(13); }
+TEST(DruckerPrager, AbsurdGuessedMultiplier3D) { absurd_guess<6>(14); }
+
 TEST(DruckerPrager, RandomProblems2D) { random_problems<3>(1); }
 TEST(DruckerPrager, RandomProblems3D) { random_problems<6>(2); }
 

@@ -106,6 +106,37 @@ void random_slides(std::uint64_t seed) {
 TEST(SlideBatch, RandomSlides2D) { random_slides<3>(21); }
 TEST(SlideBatch, RandomSlides3D) { random_slides<6>(22); }
 
+// Guesses far beyond the root (1e30 to 1e300 of W's scale: a row whose
+// traction decays step after step, test_drucker_prager.cpp) leave every
+// lane's answer finite and a point of DP(a): the batch's x(beta) overflows
+// past beta ~ 1e28 in 3D, so such a guess starts from W's scale
+// (slide_start).
+template <int S>
+void absurd_guesses(std::uint64_t seed) {
+  std::vector<SlideCase<S>> cases = slide_cases<S>(seed, 400);
+  const double guesses[] = {1e30, 1e85, 1e200, 1e300};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const double scale = std::max(cases[i].W.ev.maxCoeff(), cases[i].W.w_nn);
+    cases[i].guess = guesses[i % 4] * scale;
+  }
+  std::vector<VecS<S>> x(cases.size());
+  std::vector<double> beta(cases.size());
+  for (std::size_t i = 0; i < cases.size(); i += 8) {
+    std::vector<int> which;
+    for (std::size_t k = i; k < std::min(cases.size(), i + 8); ++k) which.push_back(int(k));
+    solve_batch<S>(cases, which, x, beta);
+  }
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const SlideCase<S>& c = cases[i];
+    ASSERT_TRUE(x[i].allFinite()) << "case " << i;
+    ASSERT_TRUE(in_drucker_prager<S>(c.Wm, c.W.unrotate(c.b), c.aperture, c.W.unrotate(x[i])))
+        << "case " << i;
+  }
+}
+
+TEST(SlideBatch, AbsurdGuesses2D) { absurd_guesses<3>(23); }
+TEST(SlideBatch, AbsurdGuesses3D) { absurd_guesses<6>(24); }
+
 // Every case solved once in order and once shuffled into other lanes and
 // other company: bit-identical answers.
 template <int S>

@@ -228,14 +228,21 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
   using VecT = Eigen::Matrix<double, S - 1, 1>;
   VecT r;
   double inv_den;
+  // 2D: r_k = 1 / (ev_k + beta) and 1 / (w_nn - c . (c r)) from one
+  // division: with e_k = ev_k + beta, p = e_0 e_1 and the denominator times
+  // p, den_p = w_nn p - c_0^2 e_1 - c_1^2 e_0, q = 1 / (p den_p) gives
+  // 1 / p = den_p q and 1 / den = p / den_p = p^2 q. p den_p and p^2 grow
+  // as beta^4 and overflow for beta beyond about 1e77;
+  // there (slide_start keeps the first beta far below, the bracket's
+  // quadrupling may still reach it) the divisions one by one.
+  double e0 = 0.0, e1 = 0.0, p = 0.0, den_p = 0.0;
   if constexpr (S == 3) {
-    // 2D: r_k = 1 / (ev_k + beta) and 1 / (w_nn - c . (c r)) from one
-    // division: with e_k = ev_k + beta, p = e_0 e_1 and the denominator
-    // times p, den_p = w_nn p - c_0^2 e_1 - c_1^2 e_0, q = 1 / (p den_p)
-    // gives 1 / p = den_p q and 1 / den = p / den_p = p^2 q.
-    const double e0 = W.ev[0] + beta, e1 = W.ev[1] + beta;
-    const double p = e0 * e1;
-    const double den_p = W.w_nn * p - W.c[0] * W.c[0] * e1 - W.c[1] * W.c[1] * e0;
+    e0 = W.ev[0] + beta, e1 = W.ev[1] + beta;
+    p = e0 * e1;
+    den_p = W.w_nn * p - W.c[0] * W.c[0] * e1 - W.c[1] * W.c[1] * e0;
+  }
+  constexpr double kMax = std::numeric_limits<double>::max();
+  if (S == 3 && std::abs(p * den_p) < kMax && p * p < kMax) {
     const double q = 1.0 / (p * den_p);
     const double inv_p = den_p * q;
     r[0] = e1 * inv_p;
@@ -365,6 +372,19 @@ inline bool separate_or_stick_unrotated(const Eigen::Matrix<double, S, 1>& w0,
 // sweep time with). Where the slide equation has several roots (seen in 3D,
 // about 1 in 2,500 random slide problems, tests/test_drucker_prager.cpp),
 // each one an exact local solution, the guess may select another root.
+// The slide solve's first beta: the row's last one (`guess`, 0 for none),
+// else W's scale. A guess beyond kSlideGuessLimit times the scale starts
+// from the scale instead: beta grows without bound on a row whose traction
+// decays towards zero step after step (a body's unloaded second contact
+// with a wall: 1e-16 of its traction left per step, beta 1e85 within a few
+// steps), and evaluating x(beta) there overflows (eval_slide).
+constexpr double kSlideGuessLimit = 1e20;
+template <int S>
+inline double slide_start(const LocalDelassus<S>& W, double guess) {
+  const double scale = std::max(W.ev.maxCoeff(), W.w_nn);
+  return guess > 0.0 && guess < kSlideGuessLimit * scale ? guess : scale;
+}
+
 template <int S>
 inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
                                            const Eigen::Matrix<double, S, 1>& b, double aperture,
@@ -382,7 +402,7 @@ inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
   // with f < 0 is known (hi infinite), quadruple beta.
   constexpr double kInf = std::numeric_limits<double>::infinity();
   double lo = 0.0, hi = kInf;
-  beta = guess > 0.0 ? guess : std::max(W.ev.maxCoeff(), W.w_nn);
+  beta = slide_start<S>(W, guess);
   detail::SlideEval<S> e;
   for (int it = 0; it < 200; ++it) {
     e = detail::eval_slide<S>(W, b[0], d, aperture, beta);

@@ -63,7 +63,7 @@ struct SlideBatch {
     w_nn[l] = W.w_nn;
     b_n[l] = b[0];
     aperture[l] = aperture_;
-    beta[l] = guess > 0.0 ? guess : std::max(W.ev.maxCoeff(), W.w_nn);
+    beta[l] = slide_start<S>(W, guess);
     for (int k = 0; k < T; ++k) {
       c[k][l] = W.c[k];
       ev[k][l] = W.ev[k];
