@@ -67,6 +67,7 @@ Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
 template <int D>
 void Simulation<D>::init_boundaries() {
   free_mask_.assign(grid_.node_count(), Vec<D>::Zero());
+  open_node_.assign(grid_.node_count(), 0);
   const double h = grid_.h();
   for (std::int64_t idx = 0; idx < grid_.node_count(); ++idx) {
     const auto n = grid_.node_coords(idx);
@@ -77,7 +78,10 @@ void Simulation<D>::init_boundaries() {
     for (int a = 0; a < D; ++a) {
       for (int side = 0; side < 2; ++side) {
         if (n[a] != (side == 0 ? 0 : grid_.cells()[a])) continue;
-        if (leaves_through_free_face(a, side, x)) continue;
+        if (leaves_through_free_face(a, side, x)) {
+          open_node_[idx] = 1;
+          continue;
+        }
         if (scene_.boundary.faces[2 * a + side] == BoundaryType::Stick) mask.setZero();
         if (scene_.boundary.faces[2 * a + side] == BoundaryType::Slip) mask[a] = 0.0;
       }

@@ -262,8 +262,11 @@ class Simulation {
   // Mass in units of rho_0: m_i / rho_0 = sum_p (rho_p / rho_0) V_p N_i, m^3
   // (equal to Phi_i when every grain has density rho_0).
   std::vector<double> node_mass_;
-  std::vector<Vec<D>> node_momentum_;   // q_i / rho_0, m^4/s
-  std::vector<Vec<D>> free_mask_;       // 1 on free velocity components, 0 on constrained
+  std::vector<Vec<D>> node_momentum_;  // q_i / rho_0, m^4/s
+  std::vector<Vec<D>> free_mask_;      // 1 on free velocity components, 0 on constrained
+  // 1 on a node of a free face or an opening (grains leave the box there),
+  // else 0: the projection does not bound the grain volume there.
+  std::vector<std::uint8_t> open_node_;
   std::vector<int> row_of_node_;        // stress row index or -1
   std::vector<SymVec<D>> warm_lambda_;  // last step's stresses, for the warm start
   // Per warm_lambda_ entry, the case its sand row ended the last solve in
