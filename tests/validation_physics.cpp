@@ -236,10 +236,10 @@ TEST(Validation, MovedGrainsDoNotHoldBackASmallOrifice) {
 
 // The projection (solver.decompaction = "project") must not hold back that
 // flow either. It bounded the grain volume at the opening's nodes too, and
-// pushed the grains crowding above the orifice back into the bin: 667
+// pushed the grains crowding above the orifice back into the bin: 402
 // grains over 0.1-0.4 s through `sablier run` against 1,270 under the pure
 // clamp. The grains there are leaving, so those nodes are not bounded
-// (decompaction.cpp, project_capacities): 1,186 grains; 0.739 kg/s against
+// (decompaction.cpp, project_capacities): 1,166 grains; 0.739 kg/s against
 // 0.801 as this test steps (2026-12-06). Same check, 90% of the pure
 // clamp's discharge.
 TEST(Validation, ProjectedGrainsDoNotHoldBackASmallOrifice) {
