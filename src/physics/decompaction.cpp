@@ -177,14 +177,15 @@ constexpr int kProjectSweeps = 200;     // at most, per round
 // first-order change of Phi_j when the grains move by -grad q), C_j =
 // phi_max V_j (1 - s_j), s_j the share of the node that the solids moving
 // into the sand take (project_capacities; nodes where grains leave the box
-// are not bounded). Solved by projected Gauss-Seidel over the
-// nodes in 2^d colours (coordinate parities: nodes of one colour share no
-// cell, so their updates are independent and the result does not depend on
-// the thread count). Grains are then moved (as in advection: a grain
+// are not bounded). Solved by projected Gauss-Seidel over the nodes in 2^d
+// colours (coordinate parities: nodes of one colour share no cell, so their
+// updates are independent and the result does not depend on the thread
+// count). Grains are then moved (as in advection: a grain
 // crossing a free face or an opening leaves, one crossing a wall stays
-// inside, one entering a solid is put back on its surface), and the part of a grain's velocity
-// against its move is removed up to |d| / dt, so that the flow does not crowd it back. Each round
-// is linearised at the grains' positions; up to `rounds` rounds, until no node is more than
+// inside, one entering a solid is put back on its surface), and the part
+// of a grain's velocity against its move is removed up to |d| / dt, so that
+// the flow does not crowd it back. Each round is linearised at the grains'
+// positions; up to `rounds` rounds, until no node is more than
 // kProjectSlack over its capacity.
 template <int D>
 double Simulation<D>::project_grains_apart(int rounds, double dt) {
@@ -318,8 +319,9 @@ void Simulation<D>::project_potentials() {
 }
 
 // Each grain moves by d_p = -sum_k q_k grad N_k(x_p), out through a free
-// face or kept inside the box's walls, and put back on the surface of a solid it would enter (as in
-// advection); the part of its velocity against d_p is removed up to |d_p| / dt.
+// face or an opening, else kept inside the box's walls, and is put back on
+// the surface of a solid it would enter (as in advection); the part of its
+// velocity against d_p is removed up to |d_p| / dt.
 template <int D>
 void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt) {
   constexpr int NC = ipow(2, D);

@@ -232,9 +232,9 @@ inline SlideEval<S> eval_slide(const LocalDelassus<S>& W, double bn,
   // division: with e_k = ev_k + beta, p = e_0 e_1 and the denominator times
   // p, den_p = w_nn p - c_0^2 e_1 - c_1^2 e_0, q = 1 / (p den_p) gives
   // 1 / p = den_p q and 1 / den = p / den_p = p^2 q. p den_p and p^2 grow
-  // as beta^4 and overflow for beta beyond about 1e77;
-  // there (slide_start keeps the first beta far below, the bracket's
-  // quadrupling may still reach it) the divisions one by one.
+  // as beta^4 and overflow for beta beyond about 1e77; there (slide_start
+  // keeps the first beta far below, the bracket's quadrupling may still
+  // reach it) the divisions one by one.
   double e0 = 0.0, e1 = 0.0, p = 0.0, den_p = 0.0;
   if constexpr (S == 3) {
     e0 = W.ev[0] + beta, e1 = W.ev[1] + beta;
@@ -363,15 +363,6 @@ inline bool separate_or_stick_unrotated(const Eigen::Matrix<double, S, 1>& w0,
   return false;
 }
 
-// Solves the local problem in rotated coordinates; b and x are rotated
-// (r = (x_N, Q^T x_T)). Returns the case that holds.
-// `beta` is in/out: on entry a guess of the plastic multiplier (0 for none,
-// e.g. the row's value from the previous sweep), on exit the multiplier of
-// the slide solution (0 in the other cases). A good guess shortens the root
-// search (2D collapse: 6.7 evaluations per slide solve without, 16% less
-// sweep time with). Where the slide equation has several roots (seen in 3D,
-// about 1 in 2,500 random slide problems, tests/test_drucker_prager.cpp),
-// each one an exact local solution, the guess may select another root.
 // The slide solve's first beta: the row's last one (`guess`, 0 for none),
 // else W's scale. A guess beyond kSlideGuessLimit times the scale starts
 // from the scale instead: beta grows without bound on a row whose traction
@@ -385,6 +376,15 @@ inline double slide_start(const LocalDelassus<S>& W, double guess) {
   return guess > 0.0 && guess < kSlideGuessLimit * scale ? guess : scale;
 }
 
+// Solves the local problem in rotated coordinates; b and x are rotated
+// (r = (x_N, Q^T x_T)). Returns the case that holds.
+// `beta` is in/out: on entry a guess of the plastic multiplier (0 for none,
+// e.g. the row's value from the previous sweep), on exit the multiplier of
+// the slide solution (0 in the other cases). A good guess shortens the root
+// search (2D collapse: 6.7 evaluations per slide solve without, 16% less
+// sweep time with). Where the slide equation has several roots (seen in 3D,
+// about 1 in 2,500 random slide problems, tests/test_drucker_prager.cpp),
+// each one an exact local solution, the guess may select another root.
 template <int S>
 inline DPCase solve_drucker_prager_rotated(const LocalDelassus<S>& W,
                                            const Eigen::Matrix<double, S, 1>& b, double aperture,
