@@ -83,7 +83,8 @@ TEST(DruckerPrager, GuessedMultiplier3D) { guessed_multiplier<6>(12); }
 // with a wall, on W's scale 1e-6: beta 1e85 within a few steps). Evaluated
 // at such a beta, the 2D form of x(beta) overflowed into a NaN, which the
 // body then carried. Whatever the guess, up to 1e300, the answer must be a
-// point of DP(a), the unguessed one (W scaled down to 1e-6 as there).
+// point of DP(a), in 2D the unguessed one (in 3D the slide equation may
+// have other roots, above); W scaled down to 1e-6 as there.
 template <int S>
 void absurd_guess(std::uint64_t seed) {
   std::mt19937_64 rng(seed);
