@@ -219,7 +219,8 @@ class Runner {
         std::fprintf(stderr,
                      "note: grains crowded beyond phi_max by up to %.1f%% of their volume (step "
                      "%ld, t = %.4g s; column overfill of stats.csv): the decompaction did not "
-                     "keep up (docs/scenes.md, \"Over-full sand\")\n",
+                     "keep up; solver.decompaction = \"project\" holds phi_max, a draining "
+                     "bin's too (docs/scenes.md, \"Over-full sand\")\n",
                      100.0 * most->overfill, most->step, most->time);
       // Sand a solid drives where it cannot escape (a piston in a closed
       // box) stays over-full: its force grows without bound. Next to a

@@ -98,6 +98,8 @@ TEST(Cli, RunNotesOverFullSand) {
                                       100.0 * most->overfill, most->step)),
             std::string::npos)
       << r.output;
+  EXPECT_NE(r.output.find("solver.decompaction = \"project\" holds phi_max"), std::string::npos)
+      << r.output;
   const Result ok = sablier("run " + scene_file("collapse2d.toml") + " --out " + spread.string() +
                             " --set time.frames=30");
   ASSERT_EQ(ok.code, 0) << ok.output;
