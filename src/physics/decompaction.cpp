@@ -190,12 +190,15 @@ constexpr int kProjectSweeps = 200;     // at most, per round
 template <int D>
 double Simulation<D>::project_grains_apart(int rounds, double dt) {
   const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
-  place_thin_solids(time_ + dt);  // where the step leaves them
+  place_thin_solids(time_ + dt);    // where the step leaves them
+  std::vector<Obstacle<D>> moving;  // the solids that take a share of a node
+  for (const Obstacle<D>& o : obstacles_end)
+    if (o.dynamic || moves_into_sand(o)) moving.push_back(o);
   move_lift_.assign(particles_.size(), 0.0);
   // Rounds, then one more look at where the last one left the grains.
   for (int round = 0; round <= rounds; ++round) {
     grain_volume_at_positions();  // Phi into move_excess_
-    project_left_ = project_capacities(obstacles_end);
+    project_left_ = project_capacities(moving);
     if (project_left_ <= kProjectSlack || round == rounds) break;
     project_assemble();
     project_potentials();
@@ -207,9 +210,9 @@ double Simulation<D>::project_grains_apart(int rounds, double dt) {
 }
 
 // Each node's capacity C_j = phi_max V_j (1 - s_j), s_j the share of the
-// solids that move (bodies, and fixed solids that translate or turn); the
-// largest excess of Phi_j over it, in units of phi_max V_j; potentials
-// reset to zero. A solid that stays in place takes no share: the sand's
+// solids that move (`moving`: bodies, and fixed solids that translate or
+// turn, where the step leaves them); the largest excess of Phi_j over it,
+// in units of phi_max V_j; potentials reset to zero. A solid that stays in place takes no share: the sand's
 // rows already keep it from compacting into the solid (build_rows), and the
 // plane estimate of s_j and the grains' quadrature of Phi_j disagree by a
 // few percent next to it, which moved the grains off sloping walls at every
@@ -220,12 +223,9 @@ double Simulation<D>::project_grains_apart(int rounds, double dt) {
 // (silo3d with 3 x 3 free nodes drained 402 grains over 0.1-0.4 s against
 // 1,166 when they are not, 1,270 under the pure clamp).
 template <int D>
-double Simulation<D>::project_capacities(const std::vector<Obstacle<D>>& obstacles_end) {
+double Simulation<D>::project_capacities(const std::vector<Obstacle<D>>& moving) {
   const double h = grid_.h();
   const std::int64_t nodes = grid_.node_count();
-  std::vector<Obstacle<D>> moving;
-  for (const Obstacle<D>& o : obstacles_end)
-    if (o.dynamic || moves_into_sand(o)) moving.push_back(o);
   project_q_.assign(nodes, 0.0);
   project_capacity_.resize(nodes);
   project_full_.resize(nodes);
@@ -326,8 +326,6 @@ template <int D>
 void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt) {
   constexpr int NC = ipow(2, D);
   const auto corner = grid_.corner_offsets();
-  const double h = grid_.h();
-  const auto& cells = grid_.cells();
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
@@ -344,10 +342,7 @@ void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, 
     const double len = d.norm();
     if (len == 0.0) continue;
     Vec<D> y = x + d;
-    for (int a = 0; a < D; ++a) {  // as in advection: out through a free face, else kept inside
-      if (y[a] < 0.0 && !leaves_through_free_face(a, 0, y)) y[a] = 1e-6 * h;
-      if (y[a] > cells[a] * h && !leaves_through_free_face(a, 1, y)) y[a] = cells[a] * h - 1e-6 * h;
-    }
+    put_inside_walls(y);
     put_outside_solids(obstacles_end, y, &x);
     move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(y - x));
     x = y;

@@ -173,7 +173,7 @@ class Simulation {
   double project_grains_apart(int rounds, double dt);
   // Its steps (decompaction.cpp): capacities (returns the largest excess),
   // the matrix L and the colours, the potentials, the grains' moves.
-  double project_capacities(const std::vector<Obstacle<D>>& obstacles_end);
+  double project_capacities(const std::vector<Obstacle<D>>& moving);
   void project_assemble();
   void project_potentials();
   void project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt);
@@ -185,6 +185,17 @@ class Simulation {
   void emit_from_spouts(double start);  // sources: particles entering during the step
   bool leaves_through_free_face(int axis, int side, const Vec<D>& x) const;
   bool kept_by_walls(const Vec<D>& x) const;
+  // A point beyond a wall of the box put back just inside it (1e-6 of a
+  // cell); beyond a free face or an opening it stays (its grain leaves at
+  // the next sort). Advection's rule and the projection's moves'.
+  void put_inside_walls(Vec<D>& x) const {
+    const double h = grid_.h();
+    for (int a = 0; a < D; ++a) {
+      const double upper = grid_.cells()[a] * h;
+      if (x[a] < 0.0 && !leaves_through_free_face(a, 0, x)) x[a] = 1e-6 * h;
+      if (x[a] > upper && !leaves_through_free_face(a, 1, x)) x[a] = upper - 1e-6 * h;
+    }
+  }
   // A grain inside a solid put back just outside it, the box's walls
   // permitting, on the side of `from` (where it came from) when given
   // (transfer.cpp).

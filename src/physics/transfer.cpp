@@ -475,8 +475,6 @@ template <int D>
 void Simulation<D>::transfer_to_particles(double dt) {
   constexpr int NC = ipow(2, D);
   const auto corner = grid_.corner_offsets();
-  const double h = grid_.h();
-  const auto& cells = grid_.cells();
   const Material* mats = materials_.data();
   const ConeProblem<D>& P = problem_;
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
@@ -539,11 +537,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // is put back just inside (it can only overshoot when cfl > 1).
     const Vec<D> from = x;
     x += dt * u;
-    for (int a = 0; a < D; ++a) {
-      const double upper = cells[a] * h;
-      if (x[a] < 0.0 && !leaves_through_free_face(a, 0, x)) x[a] = 1e-6 * h;
-      if (x[a] > upper && !leaves_through_free_face(a, 1, x)) x[a] = upper - 1e-6 * h;
-    }
+    put_inside_walls(x);
     // A grain the interpolated velocity carried into an obstacle (or that a
     // moving obstacle ran into) is put back on its surface: the grid
     // velocity keeps nodes out, not points between them.
