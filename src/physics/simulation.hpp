@@ -177,6 +177,7 @@ class Simulation {
   void project_assemble();
   void project_potentials();
   void project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt);
+  void restore_braked_momentum(const std::vector<Obstacle<D>>& obstacles_end);
   // Phi_i at the grains' present positions into move_excess_ (and each
   // grain's cell base node into move_base_, -1 outside the box).
   void grain_volume_at_positions();
@@ -293,6 +294,12 @@ class Simulation {
   // sum_p V_p grad N_j . grad N_k), its capacity and potential; the nodes
   // holding grains, by colour (coordinate parities).
   std::vector<double> project_L_, project_full_, project_capacity_, project_q_;
+  // Per grain, the velocity the braking took (project_move); per node, the
+  // momentum it took and the grains' mass there, in units of rho_0.
+  std::vector<Vec<D>> brake_velocity_, brake_momentum_;
+  std::vector<double> brake_mass_;
+  std::vector<std::int64_t> brake_root_;  // per node: its cell's clump, -1 for a cell without grains
+  std::vector<std::uint8_t> brake_walled_;  // per clump root: it touches a wall or a solid
   double project_left_ = 0.0;  // the last projection's largest excess left (StepInfo::crowding)
   std::array<std::vector<std::int64_t>, ipow(2, D)> project_nodes_;
 
