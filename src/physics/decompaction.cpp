@@ -402,26 +402,34 @@ void Simulation<D>::restore_braked_momentum(const std::vector<Obstacle<D>>& obst
     if (root[c] >= 0) root[c] = find(c);
   // A clump touches a wall where one of its nodes has a constrained
   // velocity component (a stick or slip face; ghost nodes), a solid where
-  // one of its braked grains' nodes lies within a cell of it.
-  std::vector<std::uint8_t>& walled = brake_walled_;
-  walled.assign(nodes, 0);
+  // one of its nodes lies within a cell of it. Flags per clump root: kWall
+  // (it touches one), kBraked (the braking took velocity from a grain in it).
+  constexpr std::uint8_t kWall = 1, kBraked = 2;
+  std::vector<std::uint8_t>& flag = brake_flags_;
+  flag.assign(nodes, 0);
   for (std::int64_t c = 0; c < nodes; ++c) {
-    if (root[c] < 0 || walled[root[c]]) continue;
+    if (root[c] < 0 || (flag[root[c]] & kWall)) continue;
     for (int a = 0; a < NC; ++a)
-      if (free_mask_[c + corner[a]] != Vec<D>::Ones()) walled[root[c]] = 1;
+      if (free_mask_[c + corner[a]] != Vec<D>::Ones()) flag[root[c]] |= kWall;
   }
   bool any = false;  // a braked grain in a clump in flight
-  for (std::int64_t p = 0; p < n && !any; ++p)
-    any = move_base_[p] >= 0 && !brake_velocity_[p].isZero() && !walled[root[move_base_[p]]];
+  for (std::int64_t p = 0; p < n; ++p) {
+    if (move_base_[p] < 0 || brake_velocity_[p].isZero()) continue;
+    std::uint8_t& f = flag[root[move_base_[p]]];
+    f |= kBraked;
+    any = any || !(f & kWall);
+  }
   if (!any) return;
-  for (std::int64_t p = 0; p < n && !obstacles_end.empty(); ++p) {
-    const std::int64_t c = move_base_[p];
-    if (c < 0 || brake_velocity_[p].isZero() || walled[root[c]]) continue;
+  for (std::int64_t c = 0; c < nodes && !obstacles_end.empty(); ++c) {
+    if (root[c] < 0 || flag[root[c]] != kBraked) continue;
     for (int a = 0; a < NC; ++a) {
       const auto nc = grid_.node_coords(c + corner[a]);
       Vec<D> x, normal;
       for (int k = 0; k < D; ++k) x[k] = nc[k] * h;
-      if (obstacle_distance(obstacles_end, x, &normal) < h) walled[root[c]] = 1;
+      if (obstacle_distance(obstacles_end, x, &normal) < h) {
+        flag[root[c]] |= kWall;
+        break;
+      }
     }
   }
   const std::int64_t top_stride = grid_.node_stride(D - 1);
@@ -444,7 +452,7 @@ void Simulation<D>::restore_braked_momentum(const std::vector<Obstacle<D>>& obst
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
     const std::int64_t c = move_base_[p];
-    if (c < 0 || walled[root[c]]) continue;
+    if (c < 0 || flag[root[c]] != kBraked) continue;
     std::int64_t base = 0;
     const Q1Stencil<D> s = stencil_of(p, &base);
     Vec<D> back = Vec<D>::Zero();

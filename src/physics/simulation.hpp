@@ -299,7 +299,7 @@ class Simulation {
   std::vector<Vec<D>> brake_velocity_, brake_momentum_;
   std::vector<double> brake_mass_;
   std::vector<std::int64_t> brake_root_;  // per node: its cell's clump, -1 for a cell without grains
-  std::vector<std::uint8_t> brake_walled_;  // per clump root: it touches a wall or a solid
+  std::vector<std::uint8_t> brake_flags_;  // per clump root: it touches a wall or a solid; braked
   double project_left_ = 0.0;  // the last projection's largest excess left (StepInfo::crowding)
   std::array<std::vector<std::int64_t>, ipow(2, D)> project_nodes_;
 
