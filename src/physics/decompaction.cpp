@@ -184,7 +184,8 @@ constexpr int kProjectSweeps = 200;     // at most, per round
 // crossing a free face or an opening leaves, one crossing a wall stays
 // inside, one entering a solid is put back on its surface), and the part
 // of a grain's velocity against its move is removed up to |d| / dt, so that
-// the flow does not crowd it back. Each round is linearised at the grains'
+// the flow does not crowd it back (a clump of grains touching no wall or
+// solid gets that momentum back: restore_braked_momentum). Each round is linearised at the grains'
 // positions; up to `rounds` rounds, until no node is more than
 // kProjectSlack over its capacity.
 template <int D>
