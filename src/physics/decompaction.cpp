@@ -185,9 +185,9 @@ constexpr int kProjectSweeps = 200;     // at most, per round
 // inside, one entering a solid is put back on its surface), and the part
 // of a grain's velocity against its move is removed up to |d| / dt, so that
 // the flow does not crowd it back (a clump of grains touching no wall or
-// solid gets that momentum back: restore_braked_momentum). Each round is linearised at the grains'
-// positions; up to `rounds` rounds, until no node is more than
-// kProjectSlack over its capacity.
+// solid gets that momentum back: restore_braked_momentum). Each round is
+// linearised at the grains' positions; up to `rounds` rounds, until no node
+// is more than kProjectSlack over its capacity.
 template <int D>
 double Simulation<D>::project_grains_apart(int rounds, double dt) {
   const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
@@ -217,15 +217,16 @@ double Simulation<D>::project_grains_apart(int rounds, double dt) {
 // Each node's capacity C_j = phi_max V_j (1 - s_j), s_j the share of the
 // solids that move (`moving`: bodies, and fixed solids that translate or
 // turn, where the step leaves them); the largest excess of Phi_j over it,
-// in units of phi_max V_j; potentials reset to zero. A solid that stays in place takes no share:
-// the sand's rows already keep it from compacting into the solid (build_rows), and the plane
-// estimate of s_j and the grains' quadrature of Phi_j disagree by a few percent next to it, which
-// moved the grains off sloping walls at every step (hopper3d: 36 of 121 steps at the solver's cap
-// and 1,027 sweeps per step, against 0 and 274 without the fixed walls' share). Nodes on a free
-// face or an opening are not bounded: the grains there are leaving, and
-// bounding them pushed the grains above a small orifice back into the bin
-// (silo3d with 3 x 3 free nodes drained 402 grains over 0.1-0.4 s against
-// 1,166 when they are not, 1,270 under the pure clamp).
+// in units of phi_max V_j; potentials reset to zero. A solid that stays in
+// place takes no share: the sand's rows already keep it from compacting into
+// the solid (build_rows), and the plane estimate of s_j and the grains'
+// quadrature of Phi_j disagree by a few percent next to it, which moved the
+// grains off sloping walls at every step (hopper3d: 36 of 121 steps at the
+// solver's cap and 1,027 sweeps per step, against 0 and 274 without the
+// fixed walls' share). Nodes on a free face or an opening are not bounded: the grains there are
+// leaving, and bounding them pushed the grains above a small orifice back into the bin (silo3d with
+// 3 x 3 free nodes drained 402 grains over 0.1-0.4 s against 1,166 when they are not, 1,270 under
+// the pure clamp).
 template <int D>
 double Simulation<D>::project_capacities(const std::vector<Obstacle<D>>& moving) {
   const double h = grid_.h();
@@ -380,6 +381,10 @@ void Simulation<D>::restore_braked_momentum(const std::vector<Obstacle<D>>& obst
   const std::int64_t nodes = grid_.node_count();
   const std::int64_t n = static_cast<std::int64_t>(particles_.size());
   const double h = grid_.h();
+  bool braked = false;  // most steps brake some grain; the others need no clumps
+  for (std::int64_t p = 0; p < n && !braked; ++p)
+    braked = move_base_[p] >= 0 && !brake_velocity_[p].isZero();
+  if (!braked) return;
   // Clumps: the cells holding grains (by base node), joined where they share
   // a node, by union-find in index order.
   std::vector<std::int64_t>& root = brake_root_;
@@ -438,6 +443,8 @@ void Simulation<D>::restore_braked_momentum(const std::vector<Obstacle<D>>& obst
   brake_mass_.assign(nodes, 0.0);
   scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
                        [&](std::int64_t p, unsigned mask) {
+                         // A clump's nodes are its own: the walls' clumps need no sums.
+                         if (flag[root[move_base_[p]]] != kBraked) return;
                          std::int64_t base = 0;
                          const Q1Stencil<D> s = stencil_of(p, &base);
                          const double m = mass_volume(p);
