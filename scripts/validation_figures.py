@@ -9,7 +9,7 @@ Each figure runs the shipped scenes with the overrides of the matching test
 runs' stats.csv and last particle frame, and writes a PNG into
 docs/images/validation/. The runs stay in --work (default
 /tmp/sablier_validation); --reuse skips the runs that finished there. All
-figures take about 8 minutes on 2 cores; each prints what it measured.
+figures take about 9 minutes on 2 cores; each prints what it measured.
 """
 import argparse
 import csv
@@ -236,6 +236,32 @@ def incline(args):
     ax.legend(fontsize=8)
     fig.tight_layout()
     save(args, fig, "incline")
+
+
+def mui(args):
+    """A mu(I) layer on a slope keeps accelerating (MuILayerAcceleratesOnASlopeBetweenItsAngles)."""
+    th, mu_s = math.radians(25), 0.38
+    bound = G * (math.sin(th) - mu_s * math.cos(th))
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for rule, label in [("move", "moves (the default)"), ("project", "projection (braking)")]:
+        out = run(args, f"mui_{rule}", "incline_mui2d",
+                  [f"solver.decompaction=\"{rule}\"", "time.frames=36"])
+        t, u = [], []
+        for k in range(len(glob.glob(os.path.join(out, "frames", "particles_*.csv")))):
+            f = frame(out, k)
+            near = np.abs(f["x"] - 0.5) < 0.025
+            t.append(k / 30.0), u.append(np.mean(np.hypot(f["vx"][near], f["vy"][near])))
+        ax.plot(t, u, label=label)
+        print(f"  {label}: mean speed in the middle " +
+              ", ".join(f"{u[k]:.3f} m/s at {t[k]:.2f} s" for k in (9, 18, 24, 30, 36)))
+    tt = np.linspace(0, 1.2, 50)
+    ax.plot(tt, bound * tt, "k--", label="bound g (sin 25 - mu_s cos 25) t")
+    ax.set_ylim(0, 0.6)
+    ax.set_xlabel("time (s)"), ax.set_ylabel("mean speed, |x - 0.5| < 2.5 cm (m/s)")
+    ax.set_title("incline_mui2d: mu(I) glass beads, 2 cm on a 25 degree slope")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    save(args, fig, "incline_mui")
 
 
 def fit_power(D, Q, e):
@@ -468,7 +494,8 @@ def plough(args):
     save(args, fig, "plough")
 
 
-FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "silo": silo,
+FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "mui": mui,
+           "silo": silo,
            "refinement": refinement, "pile": pile,
            "tolerance": tolerance, "axisym": axisym, "frictionless": frictionless,
            "plough": plough}

@@ -347,9 +347,11 @@ TEST(Physics, TiltedLayerFlowsAboveMohrCoulombLimit) {
 // atan 0.64 = 32.6 degrees): incline_mui2d, a 2 cm layer open at its
 // downhill end. Its steady state (mu(I) = tan 25 through the depth,
 // Bagnold's profile) has a surface speed of about 1.2 m/s, far above what
-// the layer reaches in its first second, so it must keep accelerating:
-// the mean speed of the grains within 2.5 cm of the channel's middle must
-// rise by more than 10% from 0.3 to 0.55 s and from 0.55 to 0.8 s. And
+// the layer reaches in its first second, so until the layer thins from
+// its upstream wall (that reaches the middle at about 0.9 s) it must keep
+// accelerating: the mean speed of the grains within 2.5 cm of the
+// channel's middle must rise by more than 10% from 0.3 to 0.55 s and from
+// 0.55 to 0.8 s. And
 // momentum bounds it: sheared at the bed (simple shear, the flow rule's
 // stress, METHOD.md section 4) the bed's shear stress is mu(I) p >= mu_s p,
 // so the layer's mean speed stays below g (sin 25 - mu_s cos 25) t =
