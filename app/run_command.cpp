@@ -220,8 +220,7 @@ class Runner {
                      "note: grains crowded beyond phi_max by up to %.1f%% of their volume (step "
                      "%ld, t = %.4g s; column overfill of stats.csv): the decompaction did not "
                      "keep up; solver.decompaction = \"project\" holds phi_max, a draining "
-                     "bin's too, but drags sheared flows (docs/scenes.md, \"Over-full "
-                     "sand\")\n",
+                     "bin's too (docs/scenes.md, \"Over-full sand\")\n",
                      100.0 * most->overfill, most->step, most->time);
       // Sand a solid drives where it cannot escape (a piston in a closed
       // box) stays over-full: its force grows without bound. Next to a

@@ -183,9 +183,12 @@ constexpr int kProjectSweeps = 200;     // at most, per round
 // count). Grains are then moved (as in advection: a grain
 // crossing a free face or an opening leaves, one crossing a wall stays
 // inside, one entering a solid is put back on its surface), and the part
-// of a grain's velocity against its move is removed up to |d| / dt, so that
-// the flow does not crowd it back (a clump of grains touching no wall or
-// solid gets that momentum back: restore_braked_momentum). Each round is
+// of a grain's velocity against its move gives up the kinetic energy the
+// move's lift added, at most |d| / dt of speed, so that the moves add no
+// energy to moving grains (removing that part whole, up to |d| / dt, as
+// until the thirty-first session, dragged sheared flows: docs/method.md);
+// a clump of grains touching no wall or solid gets that momentum back
+// (restore_braked_momentum). Each round is
 // linearised at the grains' positions; up to `rounds` rounds, until no node
 // is more than kProjectSlack over its capacity.
 template <int D>
@@ -326,7 +329,8 @@ void Simulation<D>::project_potentials() {
 // Each grain moves by d_p = -sum_k q_k grad N_k(x_p), out through a free
 // face or an opening, else kept inside the box's walls, and is put back on
 // the surface of a solid it would enter (as in advection); the part of its
-// velocity against d_p is removed up to |d_p| / dt.
+// velocity against d_p gives up the kinetic energy the move's lift against
+// gravity added, at most |d_p| / dt of speed.
 template <int D>
 void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt) {
   constexpr int NC = ipow(2, D);
@@ -349,13 +353,18 @@ void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, 
     Vec<D> y = x + d;
     put_inside_walls(y);
     put_outside_solids(obstacles_end, y, &x);
-    move_lift_[p] += std::max(0.0, -rho0_ * mass_volume(p) * gravity_.dot(y - x));
+    const double lift = std::max(0.0, -gravity_.dot(y - x));  // per unit mass
+    move_lift_[p] += rho0_ * mass_volume(p) * lift;
     x = y;
     Vec<D>& u = particles_.velocity[p];
     const Vec<D> dir = d / len;
     const double against = -u.dot(dir);
-    if (against > 0.0) {
-      const Vec<D> dv = std::min(against, len / dt) * dir;
+    if (against > 0.0 && lift > 0.0) {
+      // Remove from the part of u against the move the kinetic energy the
+      // lift added, a^2/2 - (a - b)^2/2 = lift, no more (at most |d| / dt).
+      const double a2 = against * against;
+      const double brake = a2 <= 2.0 * lift ? against : against - std::sqrt(a2 - 2.0 * lift);
+      const Vec<D> dv = std::min(brake, len / dt) * dir;
       u += dv;
       brake_velocity_[p] += dv;
     }
