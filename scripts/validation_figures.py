@@ -495,8 +495,7 @@ def plough(args):
 
 
 FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "mui": mui,
-           "silo": silo,
-           "refinement": refinement, "pile": pile,
+           "silo": silo, "refinement": refinement, "pile": pile,
            "tolerance": tolerance, "axisym": axisym, "frictionless": frictionless,
            "plough": plough}
 

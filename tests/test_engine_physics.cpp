@@ -351,11 +351,11 @@ TEST(Physics, TiltedLayerFlowsAboveMohrCoulombLimit) {
 // its upstream wall (that reaches the middle at about 0.9 s) it must keep
 // accelerating: the mean speed of the grains within 2.5 cm of the
 // channel's middle must rise by more than 10% from 0.3 to 0.55 s and from
-// 0.55 to 0.8 s. And
-// momentum bounds it: sheared at the bed (simple shear, the flow rule's
-// stress, METHOD.md section 4) the bed's shear stress is mu(I) p >= mu_s p,
-// so the layer's mean speed stays below g (sin 25 - mu_s cos 25) t =
-// 0.77 t m/s. Measured (2026-12-06): under the moves 0.164, 0.263 and
+// 0.55 to 0.8 s. And momentum bounds it: sheared at the bed (simple shear,
+// the flow rule's stress, METHOD.md section 4) the bed's shear stress is
+// mu(I) p >= mu_s p, so the layer's mean speed stays below
+// g (sin 25 - mu_s cos 25) t = 0.77 t m/s (g_x + mu_s g_y with the scene's
+// tilted gravity and mu = mu_s). Measured (2026-12-06): under the moves 0.164, 0.263 and
 // 0.338 m/s; under the projection 0.166, 0.276 and 0.368. A numerical drag
 // fails the first check: the projection's former braking, which took the
 // whole part of a grain's velocity against its move (up to |d| / dt), gave
@@ -375,7 +375,8 @@ double incline_middle_speed(const Simulation<2>& sim) {
 
 void mui_layer_accelerates(const std::string& decompaction) {
   Simulation<2> sim(scene("incline_mui2d.toml", {"solver.decompaction=\"" + decompaction + "\""}));
-  const double bound = 9.81 * (std::sin(25 * M_PI / 180) - 0.38 * std::cos(25 * M_PI / 180));
+  const SceneConfig& s = sim.scene();
+  const double bound = s.gravity[0] + s.material.mu * s.gravity[1];  // g (sin - mu_s cos)
   double last = 0.0;
   for (double t : {0.3, 0.55, 0.8}) {
     run_until(sim, t);

@@ -106,9 +106,9 @@ TEST(MovingSolids, RisingFloorLiftsTheBedAsABlock3D) { rising_floor_lifts_the_be
 // force over 0.05-0.3 s 198 N/m (-10%), 191 N/m (-13%) since the
 // projection brakes only its lift's energy (thirty-first session); the
 // test asks for the mean within 25% of F_p. The sand stays at phi_max:
-// after the first step the largest phi any grain sees is 0.6006 (with the grains' moves instead, in the same
-// box with a slip floor, 10% of the grains were at phi 0.70 or more after
-// 1.2 s, docs/method.md).
+// after the first step the largest phi any grain sees is 0.6006 (with the
+// grains' moves instead, in the same box with a slip floor, 10% of the
+// grains were at phi 0.70 or more after 1.2 s, docs/method.md).
 TEST(MovingSolids, PloughPushesWithRankinesPassiveThrust2D) {
   const SceneConfig s = scene("plough2d.toml");
   ASSERT_EQ(s.solver.decompaction, Decompaction::Project);  // chosen for the moving blade

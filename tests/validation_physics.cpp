@@ -182,16 +182,19 @@ std::vector<std::string> silo3d_with_opening(int n, double h = 0.01, double fill
 // 3D: the silo3d scene in a 0.3 x 0.3 m bin filled 0.25 m deep (0.15 m
 // until the thirtieth session, below), 7.5 mm cells, square openings of
 // n x n free nodes, n = 3, 5, 7 and 9 (D = 2.25 to 6.75 cm), the discharge
-// over 0.1-0.4 s (at least 90% of the grains stay in), with a looser solver (tolerance 1e-4, 500
-// sweeps at most) than the default: with 5 x 5 nodes at 1 cm the discharge was 2.678 kg/s with it
-// and 2.674 at 1e-5 (743 sweeps per step against 155, a minute against 14 s). Measured 2026-12-02
-// (eighth session, grains moved, the default since 0.2.0): Q = 0.387, 1.500, 3.439 and 6.481 kg/s
-// (`sablier run`: 0.379, 1.442, 3.438 and 6.426); with 5/2, D0 = 0.09 h and the widths within 2.5%
-// of the fit (0.9%); misfits 0.0064 (e = 2), 0.0011 (5/2), 0.0090 (3); best free exponent 2.32. At
-// 1 cm cells (D = 3 to 9 cm) the moves gave 0.768, 2.965, 6.971 and 12.597 kg/s, widths
-// within 4.03% of the fit and best free exponent 2.22: the 3-cell orifice is at the grid's limit
-// and the 9 cm one at the bin's (docs/method.md). Before, with the push, at 1 cm: Q = 0.70,
-// 2.62, 6.45 and 11.83 kg/s (`sablier run`: 0.67, 2.67, 6.49 and 12.08);
+// over 0.1-0.4 s (at least 90% of the grains stay in), with a looser solver
+// (tolerance 1e-4, 500 sweeps at most) than the default: with 5 x 5 nodes at
+// 1 cm the discharge was 2.678 kg/s with it and 2.674 at 1e-5 (743 sweeps
+// per step against 155, a minute against 14 s). Measured 2026-12-02 (eighth
+// session, grains moved, the default since 0.2.0): Q = 0.387, 1.500, 3.439
+// and 6.481 kg/s (`sablier run`: 0.379, 1.442, 3.438 and 6.426); with 5/2,
+// D0 = 0.09 h and the widths within 2.5% of the fit (0.9%); misfits 0.0064
+// (e = 2), 0.0011 (5/2), 0.0090 (3); best free exponent 2.32. At 1 cm cells
+// (D = 3 to 9 cm) the moves gave 0.768, 2.965, 6.971 and 12.597 kg/s, widths
+// within 4.03% of the fit and best free exponent 2.22: the 3-cell orifice
+// is at the grid's limit and the 9 cm one at the bin's (docs/method.md).
+// Before, with the push, at 1 cm: Q = 0.70, 2.62, 6.45 and 11.83 kg/s
+// (`sablier run`: 0.67, 2.67, 6.49 and 12.08);
 // with 5/2, D0 = 0.16 h (0.23 h) and the widths within 2.3% of the fit
 // (1.9%); misfits 0.013 (e = 2), 0.00084 (5/2), 0.0059 (3); best free
 // exponent 2.47 (2.37). The prefactor, C = 1.09 with rho_b = rho phi_max

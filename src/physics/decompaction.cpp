@@ -188,9 +188,9 @@ constexpr int kProjectSweeps = 200;     // at most, per round
 // energy to moving grains (removing that part whole, up to |d| / dt, as
 // until the thirty-first session, dragged sheared flows: docs/method.md);
 // a clump of grains touching no wall or solid gets that momentum back
-// (restore_braked_momentum). Each round is
-// linearised at the grains' positions; up to `rounds` rounds, until no node
-// is more than kProjectSlack over its capacity.
+// (restore_braked_momentum). Each round is linearised at the grains'
+// positions; up to `rounds` rounds, until no node is more than
+// kProjectSlack over its capacity.
 template <int D>
 double Simulation<D>::project_grains_apart(int rounds, double dt) {
   const std::vector<Obstacle<D>> obstacles_end = obstacles_at(time_ + dt);
@@ -226,10 +226,11 @@ double Simulation<D>::project_grains_apart(int rounds, double dt) {
 // quadrature of Phi_j disagree by a few percent next to it, which moved the
 // grains off sloping walls at every step (hopper3d: 36 of 121 steps at the
 // solver's cap and 1,027 sweeps per step, against 0 and 274 without the
-// fixed walls' share). Nodes on a free face or an opening are not bounded: the grains there are
-// leaving, and bounding them pushed the grains above a small orifice back into the bin (silo3d with
-// 3 x 3 free nodes drained 402 grains over 0.1-0.4 s against 1,166 when they are not, 1,270 under
-// the pure clamp).
+// fixed walls' share). Nodes on a free face or an opening are not bounded:
+// the grains there are leaving, and bounding them pushed the grains above a
+// small orifice back into the bin (silo3d with 3 x 3 free nodes drained 402
+// grains over 0.1-0.4 s against 1,166 when they are not, 1,270 under the
+// pure clamp).
 template <int D>
 double Simulation<D>::project_capacities(const std::vector<Obstacle<D>>& moving) {
   const double h = grid_.h();
