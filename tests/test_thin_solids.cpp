@@ -94,10 +94,10 @@ TEST(ThinSolids, ThicknessOfWallsPlatesAndMeshes) {
   fs::remove_all(dir);
 }
 
-// The default decompaction: a scene with a fixed solid thinner than 1.5
-// cells that names none takes the projection, and a note says why; one
-// that names another keeps it, with a warning; a thick wall, or a thin
-// rigid body (not measured), changes nothing.
+// A scene with a fixed solid thinner than 1.5 cells that names no
+// decompaction takes the projection (the default), and a note says what it
+// does there; one that names another keeps it, with a warning; a thick
+// wall, or a thin rigid body (not measured), gets no message.
 TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
   const SceneConfig thin = parse_scene(funnel2d(0.003), "thin.toml");
   EXPECT_EQ(thin.solver.decompaction, Decompaction::Project);
@@ -117,7 +117,7 @@ TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
       << warnings[1].line();
 
   const SceneConfig thick = parse_scene(funnel2d(0.02), "thick.toml");
-  EXPECT_EQ(thick.solver.decompaction, Decompaction::Move);
+  EXPECT_EQ(thick.solver.decompaction, Decompaction::Project);
   EXPECT_TRUE(thin_solid_messages(thick).empty());
 
   const SceneConfig body = parse_scene(
@@ -125,7 +125,7 @@ TEST(ThinSolids, ThinFixedSolidsTakeTheProjection) {
       "[[obstacle]]\nshape = \"box\"\nmin = [0.1, 0.1]\nmax = [0.2, 0.104]\ndensity = 500\n"
       "[[sand]]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.3, 0.05]\n",
       "body.toml");
-  EXPECT_EQ(body.solver.decompaction, Decompaction::Move);
+  EXPECT_EQ(body.solver.decompaction, Decompaction::Project);
   EXPECT_TRUE(thin_solid_messages(body).empty());
 }
 

@@ -133,7 +133,10 @@ void check_beverloo(const std::vector<double>& D, const std::vector<double>& Q, 
 // Measured 2026-12-02 (eighth session, grains moved, the default since
 // 0.2.0): Q = 56.4, 102.2, 217.0 and 435.6 kg/s per metre; with 3/2,
 // D0 = -0.13 h and the widths within 0.19% of the fit; misfits 0.077
-// (e = 1), 0.0000049 (3/2), 0.0076 (2); best free exponent 1.49. With the
+// (e = 1), 0.0000049 (3/2), 0.0076 (2); best free exponent 1.49. Under the
+// projection, the default since 0.3.0 (thirty-second session): Q = 57.1,
+// 97.7, 203.6 and 412.5 kg/s per metre; widths within 2.7% of the 3/2 fit,
+// D0 = -0.30 h; misfits 0.090, 0.0010, 0.0026; best free exponent 1.65. With the
 // push (seventh session, 4 grains per cell and axis): Q = 50.0, 91.1, 193.0
 // and 400.2 kg/s per metre of depth (the same widths run by `sablier run`,
 // whose sub-steps divide each frame equally: 50.6, 89.9, 193.5 and 401.7);
@@ -216,6 +219,9 @@ std::vector<std::string> silo3d_with_opening(int n, double h = 0.01, double fill
 // D0 = 0.09 h, widths within 2.4% of the fit, best free exponent 2.33
 // (11 minutes on two threads, 3 at 0.15 m); with the projection 0.386,
 // 1.481, 3.415 and 6.571 kg/s, within 1.4%, best free exponent 2.45.
+// With the projection after the moves (the default since 0.3.0,
+// thirty-second session): 0.392, 1.507, 3.420 and 6.700 kg/s, D0 = 0.14 h,
+// within 2.4%; misfits 0.014, 0.0010, 0.0056; best free exponent 2.49.
 TEST(Validation, SiloDischargeFollowsBeverloo3D) {
   constexpr double h = 0.0075;
   std::vector<double> D, Q;
@@ -228,15 +234,16 @@ TEST(Validation, SiloDischargeFollowsBeverloo3D) {
   check_beverloo(D, Q, 2.5, h);
 }
 
-// Grains moved apart (the default decompaction) must not hold back a flow
-// converging on an orifice. There the excess over phi_max peaks just above
-// the orifice, and moving grains down its gradient sends them back up into
-// the bin: through the 3 x 3 node orifice of the bin above, 4 moves per step
-// cut the discharge to 0.44 kg/s, against 0.70 with the push and 0.80 under
-// the pure clamp of METHOD.md (an experiment; measured 2026-12-02, seventh
-// session). Moves never oppose a grain's velocity (decompaction.cpp): 0.79
-// through `sablier run`, 0.77 as this test steps (eighth session: 0.768
-// against 0.779 under the pure clamp as this test steps).
+// Grains moved apart (solver.decompaction = "move", the default of 0.2.0)
+// must not hold back a flow converging on an orifice. There the excess over
+// phi_max peaks just above the orifice, and moving grains down its gradient
+// sends them back up into the bin: through the 3 x 3 node orifice of the
+// bin above, 4 moves per step cut the discharge to 0.44 kg/s, against 0.70
+// with the push and 0.80 under the pure clamp of METHOD.md (an experiment;
+// measured 2026-12-02, seventh session). Moves never oppose a grain's
+// velocity (decompaction.cpp): 0.79 through `sablier run`, 0.77 as this
+// test steps (eighth session: 0.768 against 0.779 under the pure clamp as
+// this test steps). The default projection begins with these moves.
 // The check: with 4 moves the discharge is at least 90% of the pure clamp's
 // (solver.decompaction = "clamp", METHOD.md's rule alone, which moves no
 // grain); the rule before the fix gave 55%.
@@ -244,7 +251,9 @@ TEST(Validation, MovedGrainsDoNotHoldBackASmallOrifice) {
   std::vector<std::string> clamped = silo3d_with_opening(3);
   clamped.push_back("solver.decompaction=\"clamp\"");
   const double reference = silo_discharge<3>("silo3d.toml", clamped, 0.1, 0.4);
-  const double q = silo_discharge<3>("silo3d.toml", silo3d_with_opening(3), 0.1, 0.4);
+  std::vector<std::string> moved = silo3d_with_opening(3);
+  moved.push_back("solver.decompaction=\"move\"");
+  const double q = silo_discharge<3>("silo3d.toml", moved, 0.1, 0.4);
   std::cout << "silo3d, 3 x 3 free nodes: " << reference << " kg/s under the pure clamp, " << q
             << " kg/s with grains moved\n";
   EXPECT_GT(q, 0.9 * reference);
@@ -256,8 +265,8 @@ TEST(Validation, MovedGrainsDoNotHoldBackASmallOrifice) {
 // grains over 0.1-0.4 s through `sablier run` against 1,270 under the pure
 // clamp. The grains there are leaving, so those nodes are not bounded
 // (decompaction.cpp, project_capacities): 1,166 grains; 0.739 kg/s against
-// 0.801 as this test steps (2026-12-06). Same check, 90% of the pure
-// clamp's discharge.
+// 0.801 as this test steps (2026-12-06); 0.743 since the moves come first
+// (thirty-second session). Same check, 90% of the pure clamp's discharge.
 TEST(Validation, ProjectedGrainsDoNotHoldBackASmallOrifice) {
   std::vector<std::string> clamped = silo3d_with_opening(3), projected = silo3d_with_opening(3);
   clamped.push_back("solver.decompaction=\"clamp\"");
@@ -284,7 +293,8 @@ TEST(Validation, ProjectedGrainsDoNotHoldBackASmallOrifice) {
 // 1.21, 2.13 and 2.93 against 0.62, 1.24, 2.26 and 2.77; with 2
 // (2026-12-02, eighth session, grains moved, the default since 0.2.0):
 // 0.57, 1.23, 2.20 and 3.04 (seventh session, with the push: 0.55, 1.17,
-// 2.17 and 2.90).
+// 2.17 and 2.90). Under the projection (the default since 0.3.0,
+// thirty-second session): 0.59, 1.21, 2.15 and 2.94.
 TEST(Validation, AxisymmetricCollapseFollowsLube2004) {
   const double cases[4][2] = {{0.5, 0.08}, {1.0, 0.06}, {2.0, 0.045}, {3.0, 0.04}};  // a, R0
   std::vector<double> runout;
@@ -313,7 +323,8 @@ TEST(Validation, AxisymmetricCollapseFollowsLube2004) {
 
 // METHOD.md section 5: results converge as the grid is refined. The 2D
 // collapse (collapse2d, jitter 0.5, seed 1) with its over-full nodes' grains
-// moved (the default, 4 moves per step) rather than pushed, and 4 grains per
+// moved apart (the default since 0.3.0 takes them back to phi_max after the
+// moves; 0.2.0's moves alone) rather than pushed, and 4 grains per
 // cell and axis, at 25, 12.5, 6.25 and 3.125 mm (the step shrinks with the
 // cell), to 0.9 s, when the fronts have long stopped. Compared: the deposit's
 // thickness profile, grain volume per 2 cm of x over phi_max, on [0, 0.8] m;
@@ -323,7 +334,8 @@ TEST(Validation, AxisymmetricCollapseFollowsLube2004) {
 // (L - L0)/L0 1.00, 1.16, 1.19, 1.23; median phi 0.600-0.617. Since moves
 // never oppose a grain's velocity (seventh session): gaps 4.6, 2.3 and
 // 1.7 mm (`sablier run`: 4.4, 2.2 and 1.4), run-outs 1.01, 1.18, 1.21,
-// 1.23, median phi 0.600-0.620. With solver.decompaction = "push" (the
+// 1.23, median phi 0.600-0.620. Under the default projection (thirty-second
+// session): gaps 4.3, 2.5 and 1.3 mm. With solver.decompaction = "push" (the
 // default before 0.2.0; 3 grains per cell and axis) the gaps were 6.3, 4.9 and
 // 14.7 mm and the run-outs 0.90, 1.11, 1.23, 1.45 (docs/validation.md,
 // "Known limits"); pushed with 4 per cell and axis, 2.1 and 9.2 mm from 12.5 mm
@@ -372,7 +384,9 @@ TEST(Validation, CollapseConvergesUnderGridRefinement) {
 // with the mean at 1e-5 to 2% and to within three standard errors of the
 // difference of the two means (the packing noise). Measured 2026-12-01:
 // means 1.108 (1e-4), 1.103 (1e-5), 1.111 (1e-6), each with a standard
-// deviation of 0.011-0.018 over the seeds. The front is the 99th
+// deviation of 0.011-0.018 over the seeds; under the projection (the
+// default since 0.3.0, thirty-second session) 1.171 (1e-5) and 1.176 (1e-6),
+// standard error of the difference 0.015. The front is the 99th
 // percentile of the grains' x (the farthest single grain is a stray).
 double collapse_runout(const std::string& tolerance, int seed) {
   Simulation<2> sim(

@@ -365,6 +365,12 @@ StepInfo Simulation<D>::step(double dt) {
   const bool moves = scene_.solver.decompaction == Decompaction::Move;
   if (moves) info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
   if (scene_.solver.decompaction == Decompaction::Project) {
+    // The moves first, then the projection of what they leave (docs/method.md,
+    // "The moves before the projection"): the moves spread local crowding
+    // without touching velocities, so the projection's braking acts only on
+    // the rest (hourglass2d: 27 steps at the solver's cap of 566, against
+    // 128 of 572 with the projection alone).
+    info.restoring_work += move_grains_apart(scene_.solver.decompaction_moves, dt);
     info.restoring_work += project_grains_apart(scene_.solver.decompaction_moves, dt);
     info.crowding = project_left_;
   }

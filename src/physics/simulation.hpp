@@ -167,9 +167,10 @@ class Simulation {
   // after advection (decompaction.cpp); returns the work done against
   // gravity, J (J/m in 2D).
   double move_grains_apart(int moves, double dt);
-  // solver.decompaction = "project": grains moved by the gradient of node
-  // potentials that take every node back to its capacity (decompaction.cpp);
-  // returns the work done against gravity, as move_grains_apart.
+  // solver.decompaction = "project", after move_grains_apart: grains moved
+  // by the gradient of node potentials that take every node back to its
+  // capacity (decompaction.cpp); returns the work done against gravity, as
+  // move_grains_apart.
   double project_grains_apart(int rounds, double dt);
   // Its steps (decompaction.cpp): capacities (returns the largest excess),
   // the matrix L and the colours, the potentials, the grains' moves.
@@ -298,7 +299,8 @@ class Simulation {
   // momentum it took and the grains' mass there, in units of rho_0.
   std::vector<Vec<D>> brake_velocity_, brake_momentum_;
   std::vector<double> brake_mass_;
-  std::vector<std::int64_t> brake_root_;  // per node: its cell's clump, -1 for a cell without grains
+  // Per node: its cell's clump, -1 for a cell without grains.
+  std::vector<std::int64_t> brake_root_;
   std::vector<std::uint8_t> brake_flags_;  // per clump root: it touches a wall or a solid; braked
   double project_left_ = 0.0;  // the last projection's largest excess left (StepInfo::crowding)
   std::array<std::vector<std::int64_t>, ipow(2, D)> project_nodes_;

@@ -73,21 +73,18 @@ struct SolverConfig {
   // the Gauss-Seidel updates, so results depend on it, not on the threads.
   int zone_rows = 500;
   // How grains crowded beyond phi_max by transfer errors are spread out
-  // again (docs/method.md, "What the decompaction costs"). Move (the
-  // default): the cone problem only clamps (METHOD.md step 5) and the grains
-  // are moved apart decompaction_moves times per step after advection,
-  // velocities untouched; the results converge under grid refinement.
+  // again (docs/method.md, "What the decompaction costs"). Project (the
+  // default since 0.3.0): the cone problem only clamps (METHOD.md step 5)
+  // and after advection the grains are moved apart as under Move, then by
+  // a projection (node potentials whose gradient takes every node back to
+  // phi_max, decompaction_moves rounds at most); it holds phi_max, and
+  // solids driven into the sand need it. Move (the default of 0.2.0): the
+  // grains are moved apart decompaction_moves times per step after
+  // advection, velocities untouched; draining bins compact beyond phi_max.
   // Push: the cone problem pushes them apart, 10% of the excess per step
   // (the default before 0.2.0; it does not converge under refinement).
   // Clamp: METHOD.md's pure clamp and nothing else (over-compacts).
-  // Project: the cone problem only clamps and the grains are moved by a
-  // projection after advection (node potentials whose gradient takes every
-  // node back to phi_max, decompaction_moves rounds at most); the rule for
-  // solids driven into the sand, which the moves do not keep up with.
-  Decompaction decompaction = Decompaction::Move;
-  // Whether the scene file set `decompaction` (else a scene with a solid
-  // moving into the sand takes Project; scene_obstacles.cpp).
-  bool decompaction_given = false;
+  Decompaction decompaction = Decompaction::Project;
   int decompaction_moves = 4;
 };
 

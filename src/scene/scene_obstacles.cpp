@@ -146,14 +146,12 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
 // A solid driven into the sand (a fixed obstacle given a velocity, other
 // than a plane sliding along itself) needs the projection: the grains'
 // moves do not keep up with it (docs/method.md, "Solids driven into the
-// sand"). Without a `solver.decompaction` key the scene takes it.
-void check_motion(TableReader& t, const ObstacleConfig& o, SceneConfig& s) {
-  if (!moves_into_sand(o, s.dimension)) return;
-  if (!s.solver.decompaction_given) s.solver.decompaction = Decompaction::Project;
-  if (s.solver.decompaction == Decompaction::Project) return;
+// sand"), the default since 0.3.0.
+void check_motion(TableReader& t, const ObstacleConfig& o, const SceneConfig& s) {
+  if (!moves_into_sand(o, s.dimension) || s.solver.decompaction == Decompaction::Project) return;
   t.fail_at(t.node("velocity"), "velocity",
             fmt::format("a {} moving into the sand needs solver.decompaction = \"project\" (the "
-                        "default when a solid moves); allowed: that, or no velocity, or a plane "
+                        "default); allowed: that, or no velocity, or a plane "
                         "moving along itself (velocity . normal = 0, a conveyor belt)",
                         obstacle_shape_name(o.shape, s.dimension)));
 }

@@ -128,8 +128,7 @@ void add_keys(Names& keys, const std::string& prefix, const std::vector<Field<S>
 }
 
 void read_solver(TableReader t, SolverConfig& s) {
-  s.decompaction_given = t.has("decompaction");
-  const std::string rule = t.choice("decompaction", "move", kDecompactions);
+  const std::string rule = t.choice("decompaction", "project", kDecompactions);
   s.decompaction = rule == "push"      ? Decompaction::Push
                    : rule == "clamp"   ? Decompaction::Clamp
                    : rule == "project" ? Decompaction::Project

@@ -1,6 +1,6 @@
 // Fixed solids thinner than the grid resolves (docs/scenes.md, "Thin
 // solids"): how thin a solid is, its measure when the scene is read, the
-// default decompaction it implies, and the notes and warnings about it.
+// notes and warnings about it.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -16,18 +16,14 @@ namespace sablier {
 void measure_thin_solids(SceneConfig& s) {
   // Each fixed solid is measured once, here. The grid does not resolve the
   // thin ones, so the grains next to them keep to the nodes on their side
-  // (the compatible transfer, physics/thin_solids.cpp), and a scene that
-  // names no decompaction takes the projection.
-  bool thin_solid = false;
+  // (the compatible transfer, physics/thin_solids.cpp).
   for (ObstacleConfig& o : s.obstacles) {
     ThinPart thin;
     if (o.dynamic() || !thinnest_part(o, s.dimension, kThinSolidCells * s.cell_size(), &thin))
       continue;
     o.thin = thin.thickness;
     o.thin_at = thin.where;
-    thin_solid = true;
   }
-  if (thin_solid && !s.solver.decompaction_given) s.solver.decompaction = Decompaction::Project;
 }
 
 namespace {
@@ -161,15 +157,13 @@ std::vector<SceneMessage> thin_solid_messages(const SceneConfig& s) {
         s.source, k, obstacle_shape_name(o.shape, s.dimension), 1e3 * thin.thickness, where,
         kThinSolidCells, 1e3 * below);
     messages.push_back(
-        projected
-            ? SceneMessage{false, what + ": the sand next to it is kept at phi_max by "
-                                         "solver.decompaction = \"project\" (the default with such "
-                                         "a solid; docs/scenes.md, \"Thin solids\")"}
-            : SceneMessage{true, what +
-                                     ": under this solver.decompaction the sand flowing along it "
-                                     "may pack beyond phi_max; \"project\", the default with "
-                                     "such a solid, keeps it there (docs/scenes.md, \"Thin "
-                                     "solids\")"});
+        projected ? SceneMessage{false, what + ": the sand next to it is kept at phi_max by "
+                                               "solver.decompaction = \"project\" (the default; "
+                                               "docs/scenes.md, \"Thin solids\")"}
+                  : SceneMessage{
+                        true, what + ": under this solver.decompaction the sand flowing along it "
+                                     "may pack beyond phi_max; \"project\", the default, keeps "
+                                     "it there (docs/scenes.md, \"Thin solids\")"});
   }
   return messages;
 }
