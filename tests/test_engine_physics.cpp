@@ -341,6 +341,78 @@ TEST(Physics, TiltedLayerFlowsAboveMohrCoulombLimit) {
   EXPECT_GT(v, 0.3);
 }
 
+// A heap: a right-angled wedge of sand 12 cm high against a frictionless
+// wall, its flank at theta, on a rough floor (mu = 0.5, 5 mm cells). Below
+// atan(mu) = 26.6 deg the flank is held by the stress an infinite slope
+// holds while tan(theta) <= mu (METHOD.md section 4: a heap's repose angle
+// is close to atan(mu)), so a heap at 22 deg must stand; above the 2D
+// Mohr-Coulomb limit asin(mu) = 30 deg no stress in the cone holds an
+// infinite slope, so a heap at 40 deg must slump and come to rest below 30
+// deg. (In between the rigid-plastic model admits either; measured, a heap
+// at 27.5 or 28 deg slumps.) The flank's angle: a line fitted to the
+// highest grain of each cell-wide column between 20% and 80% of the heap's
+// height. Measured (thirty-second session, 1.5 s, as this test steps):
+// 21.9 deg, 0.1177 m high, median grain speed 8e-6 m/s; the 40 deg heap
+// down to 19.8 deg, 0.0752 m, 7e-6 m/s. Slumped heaps stop below atan(mu)
+// (`sablier run`: from 28, 32 and 40 deg, 23.5, 22.3 and 19.9 deg; from 28
+// at cfl 0.25, 24.9): the slump's momentum carries them past the angle at
+// which they would stop from rest.
+struct Heap {
+  double angle_deg, height, median_speed;
+};
+
+Heap heap_after(double theta_deg, double t) {
+  const double h0 = 0.12, l0 = h0 / std::tan(theta_deg * M_PI / 180.0);
+  const std::string text =
+      "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [0.6, 0.15]\n"
+      "resolution = [120, 30]\n[time]\nfps = 30\nframes = 45\n[material]\n"
+      "density = 2500\nmu = 0.5\nphi_max = 0.6\n[boundary]\ndefault = \"slip\"\n"
+      "ymin = \"stick\"\nymax = \"free\"\n[[sand]]\nshape = \"polygon\"\n"
+      "vertices = [[0.0, 0.0], [" +
+      std::to_string(l0) + ", 0.0], [0.0, " + std::to_string(h0) + "]]\n";
+  Simulation<2> sim(parse_scene(text, "heap.toml"));
+  run_until(sim, t);
+  const double h = sim.grid().h();
+  std::vector<double> top(sim.grid().cells()[0], 0.0);
+  std::vector<double> speed;
+  for (std::size_t p = 0; p < sim.particles().size(); ++p) {
+    const Vec<2>& x = sim.particles().position[p];
+    double& column = top[std::min<std::size_t>(top.size() - 1, static_cast<std::size_t>(x[0] / h))];
+    column = std::max(column, x[1]);
+    speed.push_back(sim.particles().velocity[p].norm());
+  }
+  const double height = *std::max_element(top.begin(), top.end());
+  double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (std::size_t c = 0; c < top.size(); ++c) {
+    if (top[c] < 0.2 * height || top[c] > 0.8 * height) continue;
+    const double x = (c + 0.5) * h;
+    n += 1.0;
+    sx += x;
+    sy += top[c];
+    sxx += x * x;
+    sxy += x * top[c];
+  }
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  std::nth_element(speed.begin(), speed.begin() + speed.size() / 2, speed.end());
+  return {std::atan(-slope) * 180.0 / M_PI, height, speed[speed.size() / 2]};
+}
+
+TEST(Physics, HeapStandsBelowItsAngleAndSlumpsAboveMohrCoulombs) {
+  const double atan_mu = std::atan(0.5) * 180.0 / M_PI, asin_mu = std::asin(0.5) * 180.0 / M_PI;
+  const Heap gentle = heap_after(22.0, 1.5), steep = heap_after(40.0, 1.5);
+  std::cout << "heap at 22 deg after 1.5 s: flank " << gentle.angle_deg << " deg, height "
+            << gentle.height << " m, median speed " << gentle.median_speed
+            << " m/s; heap at 40 deg: flank " << steep.angle_deg << " deg, height " << steep.height
+            << " m, median speed " << steep.median_speed << " m/s (atan(mu) " << atan_mu
+            << ", asin(mu) " << asin_mu << ")\n";
+  EXPECT_NEAR(gentle.angle_deg, 22.0, 1.0);
+  EXPECT_GT(gentle.height, 0.95 * 0.12);
+  EXPECT_LT(gentle.median_speed, 1e-3);
+  EXPECT_LT(steep.angle_deg, asin_mu);
+  EXPECT_LT(steep.height, 0.9 * 0.12);
+  EXPECT_LT(steep.median_speed, 1e-3);
+}
+
 // mu(I) (Jop, Forterre & Pouliquen 2006: glass beads, mu_s = 0.38,
 // delta_mu = 0.26, I0 = 0.279, d = 0.5 mm) on a rough bed tilted by 25
 // degrees, between the rheology's two angles (atan 0.38 = 20.8 and
