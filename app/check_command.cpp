@@ -153,8 +153,10 @@ void print_summary(const SceneConfig& s) {
                         v.decompaction_moves)
       : v.decompaction == Decompaction::Push ? std::string("over-full nodes pushed apart")
       : v.decompaction == Decompaction::Project
-          ? fmt::format("grains of over-full nodes projected apart in at most {} rounds per step",
-                        v.decompaction_moves)
+          ? fmt::format(
+                "grains of over-full nodes moved apart {0} times, then projected in at "
+                "most {0} rounds per step",
+                v.decompaction_moves)
           : std::string("over-full nodes clamped only");
   std::printf("solver     tolerance %g, at most %d sweeps, Anderson depth %d; %s\n", v.tolerance,
               v.max_iterations, v.anderson, rule.c_str());

@@ -163,8 +163,8 @@ TEST(Cli, CheckAndInfo) {
   // 20 x 8 x 16 cells of sand, 3 x 3 x 3 grains each.
   EXPECT_NE(r.output.find("particles  69120"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("solver     tolerance 1e-05, at most 2000 sweeps, Anderson depth 5; "
-                          "grains of over-full nodes projected apart in at most 4 rounds per "
-                          "step"),
+                          "grains of over-full nodes moved apart 4 times, then projected in at "
+                          "most 4 rounds per step"),
             std::string::npos)
       << r.output;
   r = sablier("info");
