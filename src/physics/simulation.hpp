@@ -163,9 +163,9 @@ class Simulation {
   void attach_bodies(double dt);
   void move_bodies(double dt);
   void transfer_to_particles(double dt);
-  // solver.decompaction = "move": moves grains out of over-full nodes
-  // after advection (decompaction.cpp); returns the work done against
-  // gravity, J (J/m in 2D).
+  // solver.decompaction = "move", and "project" before its projection:
+  // moves grains out of over-full nodes after advection (decompaction.cpp);
+  // returns the work done against gravity, J (J/m in 2D).
   double move_grains_apart(int moves, double dt);
   // solver.decompaction = "project", after move_grains_apart: grains moved
   // by the gradient of node potentials that take every node back to its
