@@ -382,17 +382,14 @@ Heap heap_after(double theta_deg, double t) {
     speed.push_back(sim.particles().velocity[p].norm());
   }
   const double height = *std::max_element(top.begin(), top.end());
-  double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  std::vector<double> xs, ys;  // the flank's columns
   for (std::size_t c = 0; c < top.size(); ++c) {
     if (top[c] < 0.2 * height || top[c] > 0.8 * height) continue;
-    const double x = (c + 0.5) * h;
-    n += 1.0;
-    sx += x;
-    sy += top[c];
-    sxx += x * x;
-    sxy += x * top[c];
+    xs.push_back((c + 0.5) * h);
+    ys.push_back(top[c]);
   }
-  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  double slope = 0.0, intercept = 0.0;
+  test::fit_line(xs, ys, &slope, &intercept);
   std::nth_element(speed.begin(), speed.begin() + speed.size() / 2, speed.end());
   return {std::atan(-slope) * 180.0 / M_PI, height, speed[speed.size() / 2]};
 }

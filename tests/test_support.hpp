@@ -211,4 +211,17 @@ void expect_same_bits_on_1_and_2_threads(const SceneConfig& scene, int steps, in
   EXPECT_EQ(one.particles().position, two.particles().position);
 }
 
+// Least-squares line y = a x + b.
+inline void fit_line(const std::vector<double>& x, const std::vector<double>& y, double* a,
+                     double* b) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0.0, my = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n;
+  double sxx = 0.0, sxy = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
+  *a = sxy / sxx;
+  *b = my - *a * mx;
+}
+
 }  // namespace sablier::test

@@ -17,6 +17,7 @@
 namespace sablier {
 namespace {
 
+using test::fit_line;
 using test::scene;
 
 // A silo drains at a rate that does not depend on the fill height, unlike a
@@ -76,18 +77,6 @@ double silo_discharge(const char* name, const std::vector<std::string>& override
 // beyond (nodes every h).
 std::string opening_edge(double centre, int free_nodes, double h, double sign) {
   return std::to_string(centre + sign * (0.5 * (free_nodes - 1) * h + 0.3 * h));
-}
-
-// Least-squares line y = a x + b.
-void fit_line(const std::vector<double>& x, const std::vector<double>& y, double* a, double* b) {
-  const double n = static_cast<double>(x.size());
-  double mx = 0.0, my = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n;
-  double sxx = 0.0, sxy = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
-  *a = sxy / sxx;
-  *b = my - *a * mx;
 }
 
 // Q = K (D - D0)^e with e given (Q^(1/e) linear in D): D0, the squared
