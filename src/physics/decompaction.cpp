@@ -315,9 +315,9 @@ template <int D>
 void Simulation<D>::project_potentials() {
   constexpr int NS = ipow(3, D);
   const auto neighbour = grid_.stencil_offsets();
-  const int most = std::max(1, std::min(omp_get_max_threads(), omp_get_num_procs()));
+  const int most = spinning_team_limit();
   constexpr int kPad = 8;  // a cache line per thread's miss
-  project_worst_.assign(static_cast<std::size_t>(most) * kPad, 0.0);
+  std::vector<double> worst_of(static_cast<std::size_t>(most) * kPad, 0.0);
   SpinBarrier barrier;
 #pragma omp parallel num_threads(most)
   {
@@ -343,11 +343,11 @@ void Simulation<D>::project_potentials() {
       }
       // Read after the last colour's barrier; written again only after the
       // next sweep's first one, which every thread passes after reading.
-      project_worst_[static_cast<std::size_t>(team.rank) * kPad] = worst;
+      worst_of[static_cast<std::size_t>(team.rank) * kPad] = worst;
       team.sync();
       double all = 0.0;
       for (int r = 0; r < team.size; ++r)
-        all = std::max(all, project_worst_[static_cast<std::size_t>(r) * kPad]);
+        all = std::max(all, worst_of[static_cast<std::size_t>(r) * kPad]);
       if (all <= kProjectSlack) break;
     }
   }

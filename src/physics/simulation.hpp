@@ -295,7 +295,6 @@ class Simulation {
   // sum_p V_p grad N_j . grad N_k), its capacity and potential; the nodes
   // holding grains, by colour (coordinate parities).
   std::vector<double> project_L_, project_full_, project_capacity_, project_q_;
-  std::vector<double> project_worst_;  // per thread (padded): a sweep's largest miss
   // Per grain, the velocity the braking took (project_move); per node, the
   // momentum it took and the grains' mass there, in units of rho_0.
   std::vector<Vec<D>> brake_velocity_, brake_momentum_;

@@ -18,15 +18,11 @@
 namespace sablier {
 namespace solver_detail {
 
-// The solve's team: one thread per zone, at most the run's thread count
-// and the machine's processors. Its threads spin at barriers, so a thread
-// more than there are cores waits for a descheduled one at every barrier:
-// the 5 mm collapse with 3 threads on 2 cores took 88 s for 3 frames
-// against 1.5 s on 2 threads. Results do not depend on the team's size.
+// The solve's team: one thread per zone, at most spinning_team_limit()
+// (solver/team.hpp). Results do not depend on the team's size.
 template <int D>
 int team_size(const ConeProblem<D>& p) {
-  const int most = std::max(1, std::min(omp_get_max_threads(), omp_get_num_procs()));
-  return std::clamp(p.zones, 1, most);
+  return std::clamp(p.zones, 1, spinning_team_limit());
 }
 
 // A thread's part of the sweep order (solver/zones.hpp): the ranges of rows
