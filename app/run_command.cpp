@@ -349,14 +349,16 @@ class Runner {
   }
 
   void write_checkpoint(int frame, int substep) {
-    Checkpoint c = capture_checkpoint(sim_);
+    Checkpoint& c = checkpoint_;  // its arrays and bytes reused from frame to frame
+    capture_checkpoint(sim_, &c);
     c.scene_hash = record_.scene_hash;
     c.frame = frame;
     c.substep = substep;
     c.formats = outputs_text(set_);
     c.frame_times = frame_times_;
     const std::string path = (set_.dir / "checkpoint.bin").string();
-    write_file_atomic(path, encode_checkpoint(c, path));
+    encode_checkpoint(c, path, &checkpoint_bytes_);
+    write_file_atomic(path, checkpoint_bytes_);
   }
 
   void write_run_json(const char* status) {
@@ -403,6 +405,8 @@ class Runner {
   static constexpr double kOverfillNote = 0.05;
   double most_crowded_ = 0.0;
   std::vector<double> frame_times_;
+  Checkpoint checkpoint_;
+  std::string checkpoint_bytes_;
   RunRecord record_;
 };
 

@@ -2,6 +2,7 @@
 // `sablier run --resume DIR` continues it bit for bit as if it had never
 // stopped; a damaged checkpoint is refused with one line and nothing written.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -377,17 +378,38 @@ TEST(Resume, ReadsFormat3WithoutCases) {
   EXPECT_EQ(d.version, 3u);
   EXPECT_EQ(d.warm_stress, c.warm_stress);
   EXPECT_TRUE(d.warm_case.empty());
-  // Versions outside 3-4 are refused, naming both.
-  std::string five = encode_checkpoint(c, "t.bin");
-  const std::uint32_t v5 = 5;
-  std::memcpy(&five[11], &v5, sizeof v5);
+  // Versions outside 3-5 are refused, naming both.
+  std::string six = encode_checkpoint(c, "t.bin");
+  const std::uint32_t v6 = 6;
+  std::memcpy(&six[11], &v6, sizeof v6);
   try {
-    decode_checkpoint(five, "t.bin");
-    ADD_FAILURE() << "format 5 read";
+    decode_checkpoint(six, "t.bin");
+    ADD_FAILURE() << "format 6 read";
   } catch (const CheckpointError& e) {
-    EXPECT_TRUE(contains(e.what(), "format version 5")) << e.what();
-    EXPECT_TRUE(contains(e.what(), "reads versions 3 to 4")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "format version 6")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "reads versions 3 to 5")) << e.what();
   }
+}
+
+// Format 4 had the layout of format 5 with an FNV-1a checksum: still read,
+// and the checksum checked as FNV-1a (a CRC-32 there is refused).
+TEST(Resume, ReadsFormat4WithItsChecksum) {
+  const Checkpoint c = tiny();
+  std::string bytes = encode_checkpoint(c, "t.bin");
+  bytes.resize(bytes.size() - 8);
+  const std::uint32_t four = 4;
+  std::memcpy(&bytes[11], &four, sizeof four);  // little-endian hosts, as the format
+  std::string crc = bytes;
+  const std::uint64_t sum = fnv1a64(bytes);
+  bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  const Checkpoint d = decode_checkpoint(bytes, "t.bin");
+  EXPECT_EQ(d.version, 4u);
+  EXPECT_EQ(d.position, c.position);
+  EXPECT_EQ(d.warm_case, c.warm_case);
+  const std::uint64_t crc_sum = crc32_z(
+      crc32_z(0, nullptr, 0), reinterpret_cast<const unsigned char*>(crc.data()), crc.size());
+  crc.append(reinterpret_cast<const char*>(&crc_sum), sizeof crc_sum);
+  EXPECT_THROW(decode_checkpoint(crc, "t.bin"), CheckpointError);
 }
 
 // With the sand cut into zones (solver.zone_rows small), the next step's

@@ -6,12 +6,24 @@
 #include <cstring>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace sablier {
+
+// IEEE floats and two's-complement integers in the host's order, which the
+// bulk copies below rely on (every host we build on is little-endian).
+inline constexpr bool kLittleEndianHost = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
 
 // Appends integers and IEEE floats, least significant byte first.
 class ByteWriter {
  public:
+  ByteWriter() = default;
+  // Appends to `out` instead of a string of its own (a buffer kept between
+  // writes keeps its storage).
+  explicit ByteWriter(std::string* out) : data_(*out) {}
+  ByteWriter(const ByteWriter&) = delete;
+  ByteWriter& operator=(const ByteWriter&) = delete;
+
   template <class T>
   void put(T value) {
     static_assert(std::is_arithmetic_v<T>, "numbers only");
@@ -23,12 +35,24 @@ class ByteWriter {
     for (std::size_t i = 0; i < sizeof bits; ++i)
       data_ += static_cast<char>(static_cast<unsigned char>(bits >> (8 * i)));
   }
+  // A whole array, as put() would write each value: on a little-endian host
+  // its bytes are already those, and are copied in one go (a checkpoint of
+  // 69,120 grains in 3D, 16.5 MB: 27 ms byte by byte).
+  template <class T>
+  void put_all(const std::vector<T>& values) {
+    if constexpr (kLittleEndianHost) {
+      data_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    } else {
+      for (const T x : values) put(x);
+    }
+  }
   void put_bytes(const std::string& s) { data_ += s; }
   void reserve(std::size_t bytes) { data_.reserve(bytes); }
   std::string& data() { return data_; }
 
  private:
-  std::string data_;
+  std::string own_;
+  std::string& data_ = own_;
 };
 
 // Reads what ByteWriter wrote. `ok()` turns false, for good, at the first
@@ -53,6 +77,21 @@ class ByteReader {
     T value;
     std::memcpy(&value, &bits, sizeof value);
     return value;
+  }
+  // Fills `values` (sized by the caller) as get() would one by one.
+  template <class T>
+  void get_all(std::vector<T>& values) {
+    if constexpr (kLittleEndianHost) {
+      const std::size_t bytes = values.size() * sizeof(T);
+      if (pos_ + bytes > data_.size()) {
+        for (T& x : values) x = get<T>();  // zeros past the end, ok() false
+        return;
+      }
+      std::memcpy(values.data(), data_.data() + pos_, bytes);
+      pos_ += bytes;
+    } else {
+      for (T& x : values) x = get<T>();
+    }
   }
   bool ok() const { return ok_; }
   std::size_t pos() const { return pos_; }

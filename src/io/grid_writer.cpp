@@ -27,14 +27,14 @@ std::string format_vti(const GridFrame& g, VtkCompression compression) {
   point += vtk_array_tag("UInt8", "active", 1, app.add(g.active));
   const std::string extent =
       fmt::format("0 {} 0 {} 0 {}", g.nodes[0] - 1, g.nodes[1] - 1, g.nodes[2] - 1);
-  return vtk_file_open("ImageData", compression) +
-         fmt::format(
-             "<ImageData WholeExtent=\"{0}\" Origin=\"0 0 0\" Spacing=\"{1} {1} {1}\">\n"
-             "<FieldData>{2}</FieldData>\n<Piece Extent=\"{0}\">\n"
-             "<PointData Scalars=\"phi\" Vectors=\"velocity\">{3}</PointData>\n"
-             "<CellData></CellData>\n</Piece>\n</ImageData>\n",
-             extent, g.spacing, field, point) +
-         vtk_file_close(app);
+  return vtk_file(
+      "ImageData",
+      fmt::format("<ImageData WholeExtent=\"{0}\" Origin=\"0 0 0\" Spacing=\"{1} {1} {1}\">\n"
+                  "<FieldData>{2}</FieldData>\n<Piece Extent=\"{0}\">\n"
+                  "<PointData Scalars=\"phi\" Vectors=\"velocity\">{3}</PointData>\n"
+                  "<CellData></CellData>\n</Piece>\n</ImageData>\n",
+                  extent, g.spacing, field, point),
+      app);
 }
 
 GridFrame parse_vti(const std::string& s, const std::string& source) {

@@ -10,72 +10,74 @@
 namespace sablier {
 namespace {
 
-// 3-component vectors from d-component interleaved ones (z = 0 in 2D).
-std::vector<double> as_3d(const std::vector<double>& v, int d, std::size_t n) {
-  std::vector<double> out(3 * n, 0.0);
-  for (std::size_t p = 0; p < n; ++p)
-    for (int a = 0; a < d; ++a) out[3 * p + a] = v[d * p + a];
-  return out;
-}
-
-// Full 3x3 tensors (row-major) from the compact components.
-std::vector<double> as_tensor9(const ParticleFrame& f) {
-  const std::size_t n = f.count;
-  const int sc = f.stress_components();
-  std::vector<double> out(9 * n, 0.0);
-  for (std::size_t p = 0; p < n; ++p) {
-    const double* s = &f.stress[sc * p];
-    double* t = &out[9 * p];
-    if (f.dimension == 2) {
-      t[0] = s[0], t[4] = s[1], t[1] = t[3] = s[2];
-    } else {
-      t[0] = s[0], t[4] = s[1], t[8] = s[2];
-      t[1] = t[3] = s[3], t[2] = t[6] = s[4], t[5] = t[7] = s[5];
-    }
+// Value i of the 3-component vectors made of d-component interleaved ones
+// (z = 0 in 2D).
+struct As3D {
+  const std::vector<double>& v;
+  int d;
+  double operator()(std::size_t i) const {
+    const std::size_t p = i / 3, a = i % 3;
+    return static_cast<int>(a) < d ? v[d * p + a] : 0.0;
   }
-  return out;
-}
+};
+
+// Value i of the full 3x3 tensors (row-major) made of the compact components.
+struct AsTensor9 {
+  const ParticleFrame& f;
+  double operator()(std::size_t i) const {
+    // Compact component of each of the nine entries, -1 for a zero.
+    static constexpr int k2[9] = {0, 2, -1, 2, 1, -1, -1, -1, -1};
+    static constexpr int k3[9] = {0, 3, 4, 3, 1, 5, 4, 5, 2};
+    const std::size_t p = i / 9;
+    const int k = (f.dimension == 2 ? k2 : k3)[i % 9];
+    return k < 0 ? 0.0 : f.stress[f.stress_components() * p + k];
+  }
+};
 
 }  // namespace
 
 std::string format_vtp(const ParticleFrame& f, VtkCompression compression) {
   const std::size_t n = f.count;
   VtkAppended app(compression);
+  // The arrays below, raw: 180 bytes per grain, 8 per array's header.
+  if (compression == VtkCompression::None) app.reserve(180 * n + 8 * 16 + 64);
   std::string field, point;
   field += vtk_field_tag("Float64", "TIME", 1, app.add(std::vector<double>{f.time}));
   field += vtk_field_tag("Int32", "DIMENSION", 1, app.add(std::vector<std::int32_t>{f.dimension}));
   const auto scalar = [&](const char* name, const std::vector<double>& v) {
     if (v.size() == n && n > 0) point += vtk_array_tag("Float64", name, 1, app.add(v));
   };
-  point += vtk_array_tag("Float64", "velocity", 3, app.add(as_3d(f.velocity, f.dimension, n)));
+  point += vtk_array_tag("Float64", "velocity", 3,
+                         app.add_generated<double>(3 * n, As3D{f.velocity, f.dimension}));
   scalar("volume", f.volume);
   scalar("pressure", f.pressure);
   scalar("phi", f.phi);
-  point += vtk_array_tag("Float64", "stress", 9, app.add(as_tensor9(f)));
+  point += vtk_array_tag("Float64", "stress", 9, app.add_generated<double>(9 * n, AsTensor9{f}));
   scalar("shear_rate", f.shear_rate);
   // Integers, so that ParaView colours them by category and selects exactly.
   if (f.id.size() == n) {
-    std::vector<std::int64_t> id(f.id.begin(), f.id.end());
-    point += vtk_array_tag("Int64", "id", 1, app.add(id));
+    const auto id = [&f](std::size_t p) { return static_cast<std::int64_t>(f.id[p]); };
+    point += vtk_array_tag("Int64", "id", 1, app.add_generated<std::int64_t>(n, id));
   }
   if (f.material.size() == n) {
-    std::vector<std::int32_t> material(f.material.begin(), f.material.end());
-    point += vtk_array_tag("Int32", "material", 1, app.add(material));
+    const auto material = [&f](std::size_t p) { return static_cast<std::int32_t>(f.material[p]); };
+    point += vtk_array_tag("Int32", "material", 1, app.add_generated<std::int32_t>(n, material));
   }
-  const std::string points =
-      vtk_array_tag("Float64", "Points", 3, app.add(as_3d(f.position, f.dimension, n)));
-  std::vector<std::int64_t> conn(n), offs(n);
-  for (std::size_t p = 0; p < n; ++p) conn[p] = static_cast<std::int64_t>(p), offs[p] = p + 1;
-  const std::string verts = vtk_array_tag("Int64", "connectivity", 1, app.add(conn)) +
-                            vtk_array_tag("Int64", "offsets", 1, app.add(offs));
-  return vtk_file_open("PolyData", compression) +
-         fmt::format(
-             "<PolyData>\n<FieldData>{}</FieldData>\n"
-             "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" "
-             "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<PointData>{}</PointData>\n"
-             "<Points>{}</Points>\n<Verts>{}</Verts>\n</Piece>\n</PolyData>\n",
-             field, n, n, point, points, verts) +
-         vtk_file_close(app);
+  const std::string points = vtk_array_tag(
+      "Float64", "Points", 3, app.add_generated<double>(3 * n, As3D{f.position, f.dimension}));
+  const auto conn = [](std::size_t p) { return static_cast<std::int64_t>(p); };
+  const auto offs = [](std::size_t p) { return static_cast<std::int64_t>(p + 1); };
+  const std::string verts =
+      vtk_array_tag("Int64", "connectivity", 1, app.add_generated<std::int64_t>(n, conn)) +
+      vtk_array_tag("Int64", "offsets", 1, app.add_generated<std::int64_t>(n, offs));
+  return vtk_file(
+      "PolyData",
+      fmt::format("<PolyData>\n<FieldData>{}</FieldData>\n"
+                  "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" "
+                  "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<PointData>{}</PointData>\n"
+                  "<Points>{}</Points>\n<Verts>{}</Verts>\n</Piece>\n</PolyData>\n",
+                  field, n, n, point, points, verts),
+      app);
 }
 
 std::string format_particle_csv(const ParticleFrame& f) {
@@ -86,10 +88,13 @@ std::string format_particle_csv(const ParticleFrame& f) {
                  d == 2 ? "x,y,vx,vy,volume,pressure,phi,sxx,syy,sxy"
                         : "x,y,z,vx,vy,vz,volume,pressure,phi,sxx,syy,szz,sxy,sxz,syz");
   for (std::size_t p = 0; p < f.count; ++p) {
-    for (int a = 0; a < d; ++a) fmt::format_to(std::back_inserter(out), "{},", f.position[d * p + a]);
-    for (int a = 0; a < d; ++a) fmt::format_to(std::back_inserter(out), "{},", f.velocity[d * p + a]);
+    for (int a = 0; a < d; ++a)
+      fmt::format_to(std::back_inserter(out), "{},", f.position[d * p + a]);
+    for (int a = 0; a < d; ++a)
+      fmt::format_to(std::back_inserter(out), "{},", f.velocity[d * p + a]);
     fmt::format_to(std::back_inserter(out), "{},{},{}", f.volume[p], f.pressure[p], f.phi[p]);
-    for (int k = 0; k < sc; ++k) fmt::format_to(std::back_inserter(out), ",{}", f.stress[sc * p + k]);
+    for (int k = 0; k < sc; ++k)
+      fmt::format_to(std::back_inserter(out), ",{}", f.stress[sc * p + k]);
     out.push_back('\n');
   }
   return fmt::to_string(out);
@@ -109,9 +114,7 @@ ParticleFrame parse_vtp(const std::string& s, const std::string& source) {
   std::map<std::string, VtkArray> arrays = read_vtk_arrays(s, source);
   for (const char* name : {"TIME", "DIMENSION", "Points", "velocity", "stress"})
     if (!arrays.count(name)) throw IoError(source + ": missing array " + name);
-  const auto values = [&](const char* name) -> std::vector<double>& {
-    return arrays[name].values;
-  };
+  const auto values = [&](const char* name) -> std::vector<double>& { return arrays[name].values; };
   ParticleFrame f;
   f.time = values("TIME").at(0);
   f.dimension = static_cast<int>(values("DIMENSION").at(0));

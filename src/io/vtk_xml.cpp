@@ -158,15 +158,23 @@ std::string vtk_field_tag(const char* type, const std::string& name, std::size_t
       name, tuples, offset);
 }
 
-std::string vtk_file_open(const char* type, VtkCompression compression) {
-  return fmt::format(
+std::string vtk_file(const char* type, const std::string& xml, const VtkAppended& appended) {
+  const std::string open = fmt::format(
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"{}\" version=\"1.0\" byte_order=\"LittleEndian\" "
       "header_type=\"UInt64\"{}>\n",
-      type, compression == VtkCompression::Zlib ? " compressor=\"vtkZLibDataCompressor\"" : "");
-}
-
-std::string vtk_file_close(const VtkAppended& appended) {
-  return "<AppendedData encoding=\"raw\">\n_" + appended.data() + "\n</AppendedData>\n</VTKFile>\n";
+      type,
+      appended.compression() == VtkCompression::Zlib ? " compressor=\"vtkZLibDataCompressor\""
+                                                     : "");
+  const char head[] = "<AppendedData encoding=\"raw\">\n_";
+  const char tail[] = "\n</AppendedData>\n</VTKFile>\n";
+  std::string out;
+  out.reserve(open.size() + xml.size() + sizeof head + appended.data().size() + sizeof tail);
+  out += open;
+  out += xml;
+  out += head;
+  out += appended.data();
+  out += tail;
+  return out;
 }
 
 std::string xml_attribute(const std::string& tag, const std::string& key) {

@@ -4,6 +4,7 @@
 // every array of such a file back to doubles.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -34,6 +35,31 @@ class VtkAppended {
     return add_bytes(values.data(), values.size() * sizeof(T));
   }
   std::size_t add_bytes(const void* data, std::size_t bytes);
+  // An array of `count` values of T, value i being at(i): appended in
+  // chunks when the data is raw (no temporary copy of the whole array),
+  // through a buffer when it is compressed.
+  template <class T, class At>
+  std::size_t add_generated(std::size_t count, At at) {
+    if (compression_ != VtkCompression::None) {
+      std::vector<T> values(count);
+      for (std::size_t i = 0; i < count; ++i) values[i] = at(i);
+      return add(values);
+    }
+    const std::size_t offset = data_.size();
+    const std::uint64_t header = count * sizeof(T);
+    data_.append(reinterpret_cast<const char*>(&header), sizeof header);
+    constexpr std::size_t kChunk = 512;
+    T chunk[kChunk];
+    for (std::size_t i = 0; i < count; i += kChunk) {
+      const std::size_t k = std::min(kChunk, count - i);
+      for (std::size_t j = 0; j < k; ++j) chunk[j] = at(i + j);
+      data_.append(reinterpret_cast<const char*>(chunk), k * sizeof(T));
+    }
+    return offset;
+  }
+  // Room for `bytes` more of appended data (raw arrays: the values' bytes
+  // and 8 per array), so that a large frame grows its buffer once.
+  void reserve(std::size_t bytes) { data_.reserve(data_.size() + bytes); }
   VtkCompression compression() const { return compression_; }
   const std::string& data() const { return data_; }
 
@@ -51,8 +77,10 @@ std::string vtk_field_tag(const char* type, const std::string& name, std::size_t
 // The XML declaration and the opening VTKFile tag of a file of `type`
 // (PolyData, ImageData), naming the compressor if there is one.
 std::string vtk_file_open(const char* type, VtkCompression compression);
-// The appended-data section and the file's closing tags.
-std::string vtk_file_close(const VtkAppended& appended);
+// The whole file: the XML declaration, the opening VTKFile tag, `xml` (the
+// dataset's element), the appended-data section and the closing tags, built
+// in one buffer of the final size.
+std::string vtk_file(const char* type, const std::string& xml, const VtkAppended& appended);
 
 // One array read back: its VTK type name, components and values.
 struct VtkArray {
