@@ -38,10 +38,19 @@ void scatter_by_layers(const std::vector<std::int64_t>& base, std::int64_t top_s
   {
     const std::int64_t team = omp_get_num_threads(), me = omp_get_thread_num();
     const std::int64_t lo = layers * me / team, hi = layers * (me + 1) / team;
+    // The cell's nodes lie in its base node's layer and the next: a cell
+    // with both in [lo, hi) has all its corners here; the layer is divided
+    // out only for the cells across the split.
+    const std::int64_t first = (lo - 1) * top_stride, whole = lo * top_stride;
+    const std::int64_t end = hi * top_stride, whole_end = (hi - 1) * top_stride;
     for (std::int64_t p = 0; p < n; ++p) {
       const std::int64_t b = base[p];
-      const std::int64_t layer = b / top_stride;  // the cell's nodes: this layer and the next
-      if (b < 0 || layer + 1 < lo || layer >= hi) continue;
+      if (b < 0 || b < first || b >= end) continue;
+      if (b >= whole && b < whole_end) {
+        add(p, (1u << NC) - 1);
+        continue;
+      }
+      const std::int64_t layer = b / top_stride;
       unsigned mask = 0;
       for (int a = 0; a < NC; ++a) {
         const std::int64_t l = layer + ((a >> (D - 1)) & 1);
@@ -63,20 +72,27 @@ void Simulation<D>::grain_volume_at_positions() {
   Vec<D> upper;
   for (int a = 0; a < D; ++a) upper[a] = grid_.cells()[a] * h;
   move_base_.resize(n);
+  move_local_.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t p = 0; p < n; ++p) {
     const Vec<D>& x = particles_.position[p];  // leaving through a free face: -1
     bool inside = true;
     for (int a = 0; a < D; ++a) inside = inside && x[a] > 0.0 && x[a] < upper[a];
-    move_base_[p] = inside ? grid_.cell_base_node(grid_.cell_of(x)) : -1;
+    if (!inside) {
+      move_base_[p] = -1;
+      continue;
+    }
+    const auto cc = grid_.cell_of(x);  // as stencil_of
+    move_base_[p] = grid_.cell_base_node(cc);
+    for (int a = 0; a < D; ++a) move_local_[p][a] = (x[a] - cc[a] * h) / h;
   }
   find_own_sides();  // this round's positions, for its passes
   move_excess_.assign(grid_.node_count(), 0.0);
   const std::int64_t top_stride = grid_.node_stride(D - 1);
   scatter_by_layers<D>(move_base_, top_stride, grid_.node_count() / top_stride,
                        [&](std::int64_t p, unsigned mask) {
-                         std::int64_t base = 0;
-                         const Q1Stencil<D> s = stencil_of(p, &base);
+                         const std::int64_t base = move_base_[p];
+                         const Q1Stencil<D> s = stencil_at_move_base(p);
                          for (int a = 0; a < NC; ++a)
                            if (mask >> a & 1)
                              move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
@@ -123,8 +139,7 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       for (int a = 0; a < NC; ++a) near = near || move_excess_[base + corner[a]] > 0.0;
       if (!near) continue;
       Vec<D>& x = particles_.position[p];
-      std::int64_t again = 0;  // == base
-      const Q1Stencil<D> s = stencil_of(p, &again);
+      const Q1Stencil<D> s = stencil_at_move_base(p);
       Vec<D> grad = Vec<D>::Zero();
       for (int a = 0; a < NC; ++a) grad += move_excess_[base + corner[a]] * s.grad[a];
       if (grad.squaredNorm() == 0.0) continue;
@@ -280,8 +295,8 @@ void Simulation<D>::project_assemble() {
   project_L_.assign(nodes * NS, 0.0);
   scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
                        [&](std::int64_t p, unsigned mask) {
-                         std::int64_t base = 0;
-                         const Q1Stencil<D> s = stencil_of(p, &base);
+                         const std::int64_t base = move_base_[p];
+                         const Q1Stencil<D> s = stencil_at_move_base(p);
                          const double v = particles_.volume[p];
                          for (int a = 0; a < NC; ++a) {
                            if (!(mask >> a & 1)) continue;
@@ -371,8 +386,7 @@ void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, 
     for (int a = 0; a < NC; ++a) near = near || project_q_[base + corner[a]] > 0.0;
     if (!near) continue;
     Vec<D>& x = particles_.position[p];
-    std::int64_t again = 0;
-    const Q1Stencil<D> s = stencil_of(p, &again);
+    const Q1Stencil<D> s = stencil_at_move_base(p);
     Vec<D> d = Vec<D>::Zero();
     for (int a = 0; a < NC; ++a) d -= project_q_[base + corner[a]] * s.grad[a];
     const double len = d.norm();
@@ -480,9 +494,9 @@ void Simulation<D>::restore_braked_momentum(const std::vector<Obstacle<D>>& obst
   scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
                        [&](std::int64_t p, unsigned mask) {
                          // A clump's nodes are its own: the walls' clumps need no sums.
-                         if (flag[root[move_base_[p]]] != kBraked) return;
-                         std::int64_t base = 0;
-                         const Q1Stencil<D> s = stencil_of(p, &base);
+                         const std::int64_t base = move_base_[p];
+                         if (flag[root[base]] != kBraked) return;
+                         const Q1Stencil<D> s = stencil_at_move_base(p);
                          const double m = mass_volume(p);
                          for (int a = 0; a < NC; ++a) {
                            if (!(mask >> a & 1)) continue;
@@ -497,10 +511,9 @@ void Simulation<D>::restore_braked_momentum(const std::vector<Obstacle<D>>& obst
   for (std::int64_t p = 0; p < n; ++p) {
     const std::int64_t c = move_base_[p];
     if (c < 0 || flag[root[c]] != kBraked) continue;
-    std::int64_t base = 0;
-    const Q1Stencil<D> s = stencil_of(p, &base);
+    const Q1Stencil<D> s = stencil_at_move_base(p);
     Vec<D> back = Vec<D>::Zero();
-    for (int a = 0; a < NC; ++a) back += s.w[a] * brake_momentum_[base + corner[a]];
+    for (int a = 0; a < NC; ++a) back += s.w[a] * brake_momentum_[c + corner[a]];
     particles_.velocity[p] -= back;
   }
 }

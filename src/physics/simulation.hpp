@@ -180,8 +180,17 @@ class Simulation {
   void project_move(const std::vector<Obstacle<D>>& obstacles_end, double dt);
   void restore_braked_momentum(const std::vector<Obstacle<D>>& obstacles_end);
   // Phi_i at the grains' present positions into move_excess_ (and each
-  // grain's cell base node into move_base_, -1 outside the box).
+  // grain's cell base node into move_base_, -1 outside the box, and its
+  // place in that cell into move_local_).
   void grain_volume_at_positions();
+  // stencil_of(p) at the positions of the last grain_volume_at_positions,
+  // for a grain inside the box, from its place in its cell kept there: the
+  // decompaction's passes over the same positions divide by h once.
+  Q1Stencil<D> stencil_at_move_base(std::int64_t p) const {
+    Q1Stencil<D> s = q1_stencil<D>(move_local_[p], grid_.h());
+    if (!thin_solids_.empty()) keep_corners<D>(across_[p], s);
+    return s;
+  }
   // StepInfo::overfill from the Phi_j that grain_volume_at_positions left.
   double overfill() const;
   void emit_from_spouts(double start);  // sources: particles entering during the step
@@ -290,7 +299,8 @@ class Simulation {
   // grain, the lift and its cell's base node.
   std::vector<double> move_excess_, move_lift_;
   std::vector<std::int64_t> move_base_;
-  bool moves_settled_ = false;  // the last moves stopped with no node over-full
+  std::vector<Vec<D>> move_local_;  // (x_p - cell origin) / h, as stencil_of takes it
+  bool moves_settled_ = false;      // the last moves stopped with no node over-full
   // project_grains_apart: per node, its 3^d row of L (node to node,
   // sum_p V_p grad N_j . grad N_k), its capacity and potential; the nodes
   // holding grains, by colour (coordinate parities).
