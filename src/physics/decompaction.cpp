@@ -26,36 +26,47 @@ namespace {
 constexpr double kMoveRate = 0.3;
 
 // Calls add(p, mask) for each grain p with a cell (base[p] >= 0) whose
-// cell has corners in the calling thread's layers along the last axis, mask
-// the bits of those corners. Each thread scans the grains in order, so each
-// node adds up its grains in particle order whatever the thread count.
+// cell has corners in the calling thread's range of nodes, mask the bits of
+// those corners. The ranges split the grains about evenly: the grains are
+// sorted by cell at each step's start, and their cells' base nodes rise in
+// the same order (the decompaction's moves shuffle them a little, which
+// costs balance only), so thread t's range begins at the base node of grain
+// n t / team. Splitting the nodes in equal layers instead left one thread
+// idle once a collapsing column had spread low. Each thread scans the grains
+// in order, so each node adds up its grains in particle order whatever the
+// thread count and the split.
 template <int D, class Add>
-void scatter_by_layers(const std::vector<std::int64_t>& base, std::int64_t top_stride,
-                       std::int64_t layers, Add add) {
+void scatter_by_ranges(const std::vector<std::int64_t>& base,
+                       const std::array<std::int64_t, ipow(2, D)>& corner, std::int64_t nodes,
+                       Add add) {
   constexpr int NC = ipow(2, D);
+  constexpr unsigned kAll = (1u << NC) - 1;
   const std::int64_t n = static_cast<std::int64_t>(base.size());
+  const std::int64_t span = corner[NC - 1];  // a cell's last corner from its base node
 #pragma omp parallel
   {
     const std::int64_t team = omp_get_num_threads(), me = omp_get_thread_num();
-    const std::int64_t lo = layers * me / team, hi = layers * (me + 1) / team;
-    // The cell's nodes lie in its base node's layer and the next: a cell
-    // with both in [lo, hi) has all its corners here; the layer is divided
-    // out only for the cells across the split.
-    const std::int64_t first = (lo - 1) * top_stride, whole = lo * top_stride;
-    const std::int64_t end = hi * top_stride, whole_end = (hi - 1) * top_stride;
+    // The first node of thread t's range (nodes for t = team), rising with t.
+    const auto start = [&](std::int64_t t, std::int64_t below) {
+      if (t == 0) return std::int64_t(0);
+      if (t == team) return nodes;
+      std::int64_t k = n * t / team;
+      while (k < n && base[k] < 0) ++k;  // grains leaving the box have none
+      return std::max(below, k < n ? base[k] : nodes);
+    };
+    std::int64_t lo = 0;
+    for (std::int64_t t = 1; t <= me; ++t) lo = start(t, lo);
+    const std::int64_t hi = start(me + 1, lo);
     for (std::int64_t p = 0; p < n; ++p) {
       const std::int64_t b = base[p];
-      if (b < 0 || b < first || b >= end) continue;
-      if (b >= whole && b < whole_end) {
-        add(p, (1u << NC) - 1);
+      if (b < 0 || b + span < lo || b >= hi) continue;
+      if (b >= lo && b + span < hi) {
+        add(p, kAll);
         continue;
       }
-      const std::int64_t layer = b / top_stride;
       unsigned mask = 0;
-      for (int a = 0; a < NC; ++a) {
-        const std::int64_t l = layer + ((a >> (D - 1)) & 1);
-        if (l >= lo && l < hi) mask |= 1u << a;
-      }
+      for (int a = 0; a < NC; ++a)
+        if (b + corner[a] >= lo && b + corner[a] < hi) mask |= 1u << a;
       add(p, mask);
     }
   }
@@ -88,15 +99,12 @@ void Simulation<D>::grain_volume_at_positions() {
   }
   find_own_sides();  // this round's positions, for its passes
   move_excess_.assign(grid_.node_count(), 0.0);
-  const std::int64_t top_stride = grid_.node_stride(D - 1);
-  scatter_by_layers<D>(move_base_, top_stride, grid_.node_count() / top_stride,
-                       [&](std::int64_t p, unsigned mask) {
-                         const std::int64_t base = move_base_[p];
-                         const Q1Stencil<D> s = stencil_at_move_base(p);
-                         for (int a = 0; a < NC; ++a)
-                           if (mask >> a & 1)
-                             move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
-                       });
+  scatter_by_ranges<D>(move_base_, corner, grid_.node_count(), [&](std::int64_t p, unsigned mask) {
+    const std::int64_t base = move_base_[p];
+    const Q1Stencil<D> s = stencil_at_move_base(p);
+    for (int a = 0; a < NC; ++a)
+      if (mask >> a & 1) move_excess_[base + corner[a]] += particles_.volume[p] * s.w[a];
+  });
 }
 
 template <int D>
@@ -283,7 +291,6 @@ void Simulation<D>::project_assemble() {
   constexpr int NC = ipow(2, D), NS = ipow(3, D);
   const auto corner = grid_.corner_offsets();
   const std::int64_t nodes = grid_.node_count();
-  const std::int64_t top_stride = grid_.node_stride(D - 1);
   // Slot in a node's row of L of corner b seen from corner a of one cell.
   int slot[NC][NC];
   for (int a = 0; a < NC; ++a)
@@ -293,18 +300,16 @@ void Simulation<D>::project_assemble() {
       slot[a][b] = k;
     }
   project_L_.assign(nodes * NS, 0.0);
-  scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
-                       [&](std::int64_t p, unsigned mask) {
-                         const std::int64_t base = move_base_[p];
-                         const Q1Stencil<D> s = stencil_at_move_base(p);
-                         const double v = particles_.volume[p];
-                         for (int a = 0; a < NC; ++a) {
-                           if (!(mask >> a & 1)) continue;
-                           double* row = project_L_.data() + (base + corner[a]) * NS;
-                           for (int b = 0; b < NC; ++b)
-                             row[slot[a][b]] += v * s.grad[a].dot(s.grad[b]);
-                         }
-                       });
+  scatter_by_ranges<D>(move_base_, corner, nodes, [&](std::int64_t p, unsigned mask) {
+    const std::int64_t base = move_base_[p];
+    const Q1Stencil<D> s = stencil_at_move_base(p);
+    const double v = particles_.volume[p];
+    for (int a = 0; a < NC; ++a) {
+      if (!(mask >> a & 1)) continue;
+      double* row = project_L_.data() + (base + corner[a]) * NS;
+      for (int b = 0; b < NC; ++b) row[slot[a][b]] += v * s.grad[a].dot(s.grad[b]);
+    }
+  });
   for (auto& list : project_nodes_) list.clear();
   for (std::int64_t i = 0; i < nodes; ++i) {
     if (!(move_excess_[i] > 0.0) || open_node_[i] || !(project_L_[i * NS + NS / 2] > 0.0)) continue;
@@ -488,22 +493,20 @@ void Simulation<D>::restore_braked_momentum(const std::vector<Obstacle<D>>& obst
       }
     }
   }
-  const std::int64_t top_stride = grid_.node_stride(D - 1);
   brake_momentum_.assign(nodes, Vec<D>::Zero());
   brake_mass_.assign(nodes, 0.0);
-  scatter_by_layers<D>(move_base_, top_stride, nodes / top_stride,
-                       [&](std::int64_t p, unsigned mask) {
-                         // A clump's nodes are its own: the walls' clumps need no sums.
-                         const std::int64_t base = move_base_[p];
-                         if (flag[root[base]] != kBraked) return;
-                         const Q1Stencil<D> s = stencil_at_move_base(p);
-                         const double m = mass_volume(p);
-                         for (int a = 0; a < NC; ++a) {
-                           if (!(mask >> a & 1)) continue;
-                           brake_momentum_[base + corner[a]] += (m * s.w[a]) * brake_velocity_[p];
-                           brake_mass_[base + corner[a]] += m * s.w[a];
-                         }
-                       });
+  scatter_by_ranges<D>(move_base_, corner, nodes, [&](std::int64_t p, unsigned mask) {
+    // A clump's nodes are its own: the walls' clumps need no sums.
+    const std::int64_t base = move_base_[p];
+    if (flag[root[base]] != kBraked) return;
+    const Q1Stencil<D> s = stencil_at_move_base(p);
+    const double m = mass_volume(p);
+    for (int a = 0; a < NC; ++a) {
+      if (!(mask >> a & 1)) continue;
+      brake_momentum_[base + corner[a]] += (m * s.w[a]) * brake_velocity_[p];
+      brake_mass_[base + corner[a]] += m * s.w[a];
+    }
+  });
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nodes; ++i)
     if (brake_mass_[i] > 0.0) brake_momentum_[i] /= brake_mass_[i];
