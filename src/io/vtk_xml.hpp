@@ -74,11 +74,9 @@ std::string vtk_array_tag(const char* type, const std::string& name, int compone
 // FieldData arrays also need their tuple count: readers size them by it.
 std::string vtk_field_tag(const char* type, const std::string& name, std::size_t tuples,
                           std::size_t offset);
-// The XML declaration and the opening VTKFile tag of a file of `type`
-// (PolyData, ImageData), naming the compressor if there is one.
-std::string vtk_file_open(const char* type, VtkCompression compression);
-// The whole file: the XML declaration, the opening VTKFile tag, `xml` (the
-// dataset's element), the appended-data section and the closing tags, built
+// The whole file: the XML declaration, the opening VTKFile tag of a file of
+// `type` (PolyData, ImageData) naming the compressor if there is one, `xml`
+// (the dataset's element), the appended-data section and the closing tags, built
 // in one buffer of the final size.
 std::string vtk_file(const char* type, const std::string& xml, const VtkAppended& appended);
 
