@@ -95,7 +95,7 @@ void Simulation<D>::grain_volume_at_positions() {
     }
     const auto cc = grid_.cell_of(x);  // as stencil_of
     move_base_[p] = grid_.cell_base_node(cc);
-    for (int a = 0; a < D; ++a) move_local_[p][a] = (x[a] - cc[a] * h) / h;
+    move_local_[p] = place_in_cell(x, cc);
   }
   find_own_sides();  // this round's positions, for its passes
   move_excess_.assign(grid_.node_count(), 0.0);

@@ -450,9 +450,7 @@ double Simulation<D>::affine_energy() const {
   double e = 0.0;
   for (std::size_t p = 0; p < particles_.size(); ++p) {
     const Vec<D>& x = particles_.position[p];
-    const auto cc = grid_.cell_of(x);
-    Vec<D> local;
-    for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
+    const Vec<D> local = place_in_cell(x, grid_.cell_of(x));
     const Q1Stencil<D> s = q1_stencil<D>(local, h);
     for (int c = 0; c < NC; ++c) {
       Vec<D> offset;

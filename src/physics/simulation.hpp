@@ -187,9 +187,7 @@ class Simulation {
   // for a grain inside the box, from its place in its cell kept there: the
   // decompaction's passes over the same positions divide by h once.
   Q1Stencil<D> stencil_at_move_base(std::int64_t p) const {
-    Q1Stencil<D> s = q1_stencil<D>(move_local_[p], grid_.h());
-    if (!thin_solids_.empty()) keep_corners<D>(across_[p], s);
-    return s;
+    return stencil_in_cell(p, move_local_[p]);
   }
   // StepInfo::overfill from the Phi_j that grain_volume_at_positions left.
   double overfill() const;
@@ -223,12 +221,21 @@ class Simulation {
   // find_own_sides must have computed at the grain's present position).
   Q1Stencil<D> stencil_of(std::int64_t p, std::int64_t* base) const {
     const Vec<D>& x = particles_.position[p];
-    const double h = grid_.h();
     const auto cc = grid_.cell_of(x);
     *base = grid_.cell_base_node(cc);
+    return stencil_in_cell(p, place_in_cell(x, cc));
+  }
+  // (x - the origin of cell cc) / h: where x lies in that cell, in [0, 1]^d.
+  Vec<D> place_in_cell(const Vec<D>& x, const typename DenseGrid<D>::IVec& cc) const {
+    const double h = grid_.h();
     Vec<D> local;
     for (int a = 0; a < D; ++a) local[a] = (x[a] - cc[a] * h) / h;
-    Q1Stencil<D> s = q1_stencil<D>(local, h);
+    return local;
+  }
+  // The shape functions of grain p at `local` in its cell, its own side's
+  // next to a thin solid.
+  Q1Stencil<D> stencil_in_cell(std::int64_t p, const Vec<D>& local) const {
+    Q1Stencil<D> s = q1_stencil<D>(local, grid_.h());
     if (!thin_solids_.empty()) keep_corners<D>(across_[p], s);
     return s;
   }

@@ -72,9 +72,8 @@ std::uint8_t Simulation<D>::corners_across(const Vec<D>& x, std::int64_t base) c
   Vec<D> n;
   const double d = obstacle_distance(thin_solids_, x, &n);
   if (!(d >= 0.0)) return 0;  // inside: put back after the step
-  Vec<D> local;               // as stencil_of has it: x in cells from the base node
-  const auto nb = grid_.node_coords(base);
-  for (int k = 0; k < D; ++k) local[k] = (x[k] - nb[k] * h) / h;
+  // As stencil_of has it: x in cells from the base node.
+  const Vec<D> local = place_in_cell(x, grid_.node_coords(base));
   const Q1Stencil<D> s = q1_stencil<D>(local, h);
   double S = 0.0;  // the kept corners' weight
   unsigned across = 0;
