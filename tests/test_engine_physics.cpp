@@ -11,6 +11,7 @@
 #include <iostream>
 #include <string>
 
+#include "heap_fixture.hpp"
 #include "physics/simulation.hpp"
 #include "scene/scene.hpp"
 #include "test_support.hpp"
@@ -356,43 +357,11 @@ TEST(Physics, TiltedLayerFlowsAboveMohrCoulombLimit) {
 // down to 19.8 deg, 0.0752 m, 7e-6 m/s. Slumped heaps stop below atan(mu)
 // (`sablier run`: from 28, 32 and 40 deg, 23.5, 22.3 and 19.9 deg; from 28
 // at cfl 0.25, 24.9): the slump's momentum carries them past the angle at
-// which they would stop from rest.
-struct Heap {
-  double angle_deg, height, median_speed;
-};
-
-Heap heap_after(double theta_deg, double t) {
-  const double h0 = 0.12, l0 = h0 / std::tan(theta_deg * M_PI / 180.0);
-  const std::string text =
-      "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [0.6, 0.15]\n"
-      "resolution = [120, 30]\n[time]\nfps = 30\nframes = 45\n[material]\n"
-      "density = 2500\nmu = 0.5\nphi_max = 0.6\n[boundary]\ndefault = \"slip\"\n"
-      "ymin = \"stick\"\nymax = \"free\"\n[[sand]]\nshape = \"polygon\"\n"
-      "vertices = [[0.0, 0.0], [" +
-      std::to_string(l0) + ", 0.0], [0.0, " + std::to_string(h0) + "]]\n";
-  Simulation<2> sim(parse_scene(text, "heap.toml"));
-  run_until(sim, t);
-  const double h = sim.grid().h();
-  std::vector<double> top(sim.grid().cells()[0], 0.0);
-  std::vector<double> speed;
-  for (std::size_t p = 0; p < sim.particles().size(); ++p) {
-    const Vec<2>& x = sim.particles().position[p];
-    double& column = top[std::min<std::size_t>(top.size() - 1, static_cast<std::size_t>(x[0] / h))];
-    column = std::max(column, x[1]);
-    speed.push_back(sim.particles().velocity[p].norm());
-  }
-  const double height = *std::max_element(top.begin(), top.end());
-  std::vector<double> xs, ys;  // the flank's columns
-  for (std::size_t c = 0; c < top.size(); ++c) {
-    if (top[c] < 0.2 * height || top[c] > 0.8 * height) continue;
-    xs.push_back((c + 0.5) * h);
-    ys.push_back(top[c]);
-  }
-  double slope = 0.0, intercept = 0.0;
-  test::fit_line(xs, ys, &slope, &intercept);
-  std::nth_element(speed.begin(), speed.begin() + speed.size() / 2, speed.end());
-  return {std::atan(-slope) * 180.0 / M_PI, height, speed[speed.size() / 2]};
-}
+// which they would stop from rest. The scene and the measure:
+// tests/heap_fixture.hpp; how the slumped angle depends on the grid and the
+// grains per cell: tests/validation_heap.cpp.
+using test::Heap;
+using test::heap_after;
 
 TEST(Physics, HeapStandsBelowItsAngleAndSlumpsAboveMohrCoulombs) {
   const double atan_mu = std::atan(0.5) * 180.0 / M_PI, asin_mu = std::asin(0.5) * 180.0 / M_PI;

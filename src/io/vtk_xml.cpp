@@ -131,7 +131,7 @@ std::size_t VtkAppended::add_bytes(const void* data, std::size_t bytes) {
   const std::size_t offset = data_.size();
   const char* p = static_cast<const char*>(data);
   if (compression_ == VtkCompression::None) {
-    append_u64(data_, bytes);
+    append_raw_header(bytes);
     data_.append(p, bytes);
     return offset;
   }

@@ -46,8 +46,7 @@ class VtkAppended {
       return add(values);
     }
     const std::size_t offset = data_.size();
-    const std::uint64_t header = count * sizeof(T);
-    data_.append(reinterpret_cast<const char*>(&header), sizeof header);
+    append_raw_header(count * sizeof(T));
     constexpr std::size_t kChunk = 512;
     T chunk[kChunk];
     for (std::size_t i = 0; i < count; i += kChunk) {
@@ -64,6 +63,11 @@ class VtkAppended {
   const std::string& data() const { return data_; }
 
  private:
+  // A raw array's header: its size in bytes, one UInt64.
+  void append_raw_header(std::uint64_t bytes) {
+    data_.append(reinterpret_cast<const char*>(&bytes), sizeof bytes);
+  }
+
   VtkCompression compression_;
   std::string data_;
 };
