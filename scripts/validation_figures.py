@@ -9,7 +9,7 @@ Each figure runs the shipped scenes with the overrides of the matching test
 runs' stats.csv and last particle frame, and writes a PNG into
 docs/images/validation/. The runs stay in --work (default
 /tmp/sablier_validation); --reuse skips the runs that finished there. All
-figures take about 9 minutes on 2 cores; each prints what it measured.
+figures take about 10 minutes on 2 cores; each prints what it measured.
 """
 import argparse
 import csv
@@ -41,12 +41,14 @@ def finished(out):
 
 
 def run(args, name, scene, sets):
-    """Runs scenes/SCENE.toml with --set overrides into WORK/NAME (CSV frames too)."""
+    """Runs scenes/SCENE.toml (or SCENE itself, a path ending in .toml) with --set
+    overrides into WORK/NAME (CSV frames too)."""
     out = os.path.join(args.work, name)
     if args.reuse and finished(out):
         return out
     shutil.rmtree(out, ignore_errors=True)
-    cmd = [args.sablier, "run", os.path.join(ROOT, "scenes", scene + ".toml"), "--out", out,
+    path = scene if scene.endswith(".toml") else os.path.join(ROOT, "scenes", scene + ".toml")
+    cmd = [args.sablier, "run", path, "--out", out,
            "--threads", str(args.threads), "--format", "vtp,csv"]
     for s in sets:
         cmd += ["--set", s]
@@ -390,6 +392,45 @@ def pile(args):
     save(args, fig, "pile")
 
 
+def heap(args):
+    """A slumped heap's flank against the cell, 3, 4 and 5 grains per cell and axis
+    (tests/heap_fixture.hpp, validation_heap.cpp)."""
+    h0, theta = 0.12, 28.0
+    l0 = h0 / math.tan(math.radians(theta))
+    scene = os.path.join(args.work, "heap28.toml")
+    with open(scene, "w") as f:
+        f.write('dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [0.6, 0.15]\n'
+                'resolution = [120, 30]\n[time]\nfps = 30\nframes = 45\n[material]\n'
+                'density = 2500\nmu = 0.5\nphi_max = 0.6\n[boundary]\ndefault = "slip"\n'
+                'ymin = "stick"\nymax = "free"\n[[sand]]\nshape = "polygon"\n'
+                f"vertices = [[0.0, 0.0], [{l0:.6f}, 0.0], [0.0, {h0}]]\n")
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    rows = [15, 30, 60]  # 10, 5 and 2.5 mm cells
+    for k, grains in enumerate((3, 4, 5)):
+        angles = []
+        for n in rows:
+            out = run(args, f"heap_g{grains}_r{n}", scene,
+                      [f"grid.resolution=[{4 * n},{n}]", f"sand.0.particles_per_cell={grains}"])
+            p, h = frame(out), 0.15 / n
+            cols = np.floor(p["x"] / h).astype(int)
+            top = np.array([p["y"][cols == c].max() for c in np.unique(cols)])
+            xs = (np.unique(cols) + 0.5) * h
+            sel = (top >= 0.2 * top.max()) & (top <= 0.8 * top.max())
+            angles.append(math.degrees(math.atan(-np.polyfit(xs[sel], top[sel], 1)[0])))
+        print(f"  {grains} grains per axis: flank " +
+              ", ".join(f"{a:.1f}" for a in angles) + " deg at 10, 5 and 2.5 mm")
+        ax.plot([1000 * 0.15 / n for n in rows], angles, "o-", color=f"C{k}",
+                label=f"{grains} grains per cell and axis")
+    ax.axhline(math.degrees(math.atan(0.5)), color="k", ls="--", label="atan(mu) = 26.6 deg")
+    ax.axhline(theta, color="k", ls=":", label="the flank at the start, 28 deg")
+    ax.invert_xaxis()
+    ax.set_xlabel("cell (mm)"), ax.set_ylabel("flank after 1.5 s (deg)")
+    ax.set_title("a 12 cm heap slumping from 28 deg (mu = 0.5)", fontsize=10)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    save(args, fig, "heap")
+
+
 def tolerance(args):
     """Run-out against the solver tolerance, five seedings (CollapseConvergesWithSolverTolerance)."""
     fig, ax = plt.subplots(figsize=(6.5, 4))
@@ -497,7 +538,7 @@ def plough(args):
 FIGURES = {"bed": bed, "energy": energy, "collapse": collapse, "incline": incline, "mui": mui,
            "silo": silo, "refinement": refinement, "pile": pile,
            "tolerance": tolerance, "axisym": axisym, "frictionless": frictionless,
-           "plough": plough}
+           "plough": plough, "heap": heap}
 
 
 def main():
