@@ -18,10 +18,6 @@ namespace {
 // 46.9% at ~55 MB/s), and frames are written inside the time loop.
 constexpr int kZlibLevel = 1;
 
-void append_u64(std::string& out, std::uint64_t v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof v);
-}
-
 // Each block is compressed on its own, so blocks compress in parallel; zlib's
 // output depends only on the input and the level, so files stay
 // bit-identical whatever the thread count.
@@ -131,15 +127,15 @@ std::size_t VtkAppended::add_bytes(const void* data, std::size_t bytes) {
   const std::size_t offset = data_.size();
   const char* p = static_cast<const char*>(data);
   if (compression_ == VtkCompression::None) {
-    append_raw_header(bytes);
+    append_u64(bytes);
     data_.append(p, bytes);
     return offset;
   }
   const std::vector<std::string> blocks = compress_blocks(p, bytes);
-  append_u64(data_, blocks.size());
-  append_u64(data_, kVtkZlibBlockBytes);
-  append_u64(data_, bytes % kVtkZlibBlockBytes);  // 0: the last block is full
-  for (const std::string& b : blocks) append_u64(data_, b.size());
+  append_u64(blocks.size());
+  append_u64(kVtkZlibBlockBytes);
+  append_u64(bytes % kVtkZlibBlockBytes);  // 0: the last block is full
+  for (const std::string& b : blocks) append_u64(b.size());
   for (const std::string& b : blocks) data_ += b;
   return offset;
 }

@@ -46,7 +46,7 @@ class VtkAppended {
       return add(values);
     }
     const std::size_t offset = data_.size();
-    append_raw_header(count * sizeof(T));
+    append_u64(count * sizeof(T));  // the raw array's header: its bytes
     constexpr std::size_t kChunk = 512;
     T chunk[kChunk];
     for (std::size_t i = 0; i < count; i += kChunk) {
@@ -63,10 +63,9 @@ class VtkAppended {
   const std::string& data() const { return data_; }
 
  private:
-  // A raw array's header: its size in bytes, one UInt64.
-  void append_raw_header(std::uint64_t bytes) {
-    data_.append(reinterpret_cast<const char*>(&bytes), sizeof bytes);
-  }
+  // One UInt64 of a header (a raw array's size, the zlib blocks' counts and
+  // sizes), in the host's order: little-endian, as the file says.
+  void append_u64(std::uint64_t v) { data_.append(reinterpret_cast<const char*>(&v), sizeof v); }
 
   VtkCompression compression_;
   std::string data_;
