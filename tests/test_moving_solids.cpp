@@ -103,10 +103,12 @@ TEST(MovingSolids, RisingFloorLiftsTheBedAsABlock3D) { rising_floor_lifts_the_be
 // associated material's collapse; our flow rule is non-associated (no
 // dilatancy, METHOD.md section 1), which lowers collapse loads (Drescher &
 // Detournay 1993), and the mound grows as the blade moves. Measured: mean
-// force over 0.05-0.3 s 198 N/m (-10%), 191 N/m (-13%) since the
-// projection brakes only its lift's energy (thirty-first session), 186
-// N/m (-16%) since the grains' moves come before it (thirty-second); the
-// test asks for the mean within 25% of F_p. The sand stays at phi_max:
+// force over 0.05-0.3 s 220.2 N/m (-0.2%) with the 5 grains per cell and
+// axis the scene seeds since the thirty-sixth session; with 3 (shipped
+// until then) 186 N/m (-16%), the particle quadrature letting the pushed
+// sand compact and the projection undoing it without a force (198 and 191
+// N/m under earlier projections). The test asks for the mean within 10% of
+// F_p, which the 3-grain seeding fails. The sand stays at phi_max:
 // after the first step the largest phi any grain sees is 0.6006 (with the
 // grains' moves instead, in the same box with a slip floor, 10% of the
 // grains were at phi 0.70 or more after 1.2 s, docs/method.md).
@@ -129,7 +131,7 @@ TEST(MovingSolids, PloughPushesWithRankinesPassiveThrust2D) {
   const double rankine = 3.0 * s.material.density * s.material.phi_max * 9.81 * 0.1 * 0.1 / 2.0;
   std::cout << "plough: mean force " << impulse / span << " N/m against Rankine's passive "
             << rankine << " N/m, largest phi " << most_phi << "\n";
-  EXPECT_NEAR(impulse / span / rankine, 1.0, 0.25);
+  EXPECT_NEAR(impulse / span / rankine, 1.0, 0.10);
   EXPECT_LT(most_phi, 0.61);
   EXPECT_EQ(sim.particles().size(), grains);
 }
@@ -204,7 +206,7 @@ TEST(MovingSolids, ThinBladeLetsNoGrainBehind2D) {
   std::cout << "thin blade: " << behind << " grain-steps behind it, mean force " << impulse / span
             << " N/m against Rankine's " << rankine << ", largest phi " << most_phi << "\n";
   EXPECT_EQ(behind, 0u);
-  EXPECT_NEAR(impulse / span / rankine, 1.0, 0.25);
+  EXPECT_NEAR(impulse / span / rankine, 1.0, 0.10);
   EXPECT_LT(most_phi, 0.61);
 }
 

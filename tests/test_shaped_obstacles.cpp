@@ -248,9 +248,10 @@ TEST(ShapedObstacles, BedRestsOnAMeshSlab) {
 // the discharge holds: Beverloo's law makes it independent of the height
 // of sand above the neck, so the grains through the neck over 0.5-0.9 s
 // and over 0.9-1.3 s agree within 15% (the bound of the silo's validation
-// test). Measured through `sablier run` (2 threads): 2,308 grains per
-// second over 0.2-0.6 s, while the flow sets in, 2,558 over 0.6-1.0 s,
-// 2,622 over 1.0-1.4 s and 2,897 over 1.4-1.7 s as the bulb empties.
+// test). Measured through `sablier run` (5 grains per cell and axis, 12,602
+// grains): 6,500 grains per second over 0.2-0.6 s, while the flow sets in,
+// 6,628 over 0.6-1.0 s, 6,733 over 1.0-1.4 s and 6,363 over 1.4-1.7 s; the
+// test's windows 6,493 and 6,618.
 TEST(ShapedObstacles, HourglassDrainsThroughItsNeck) {
   const SceneConfig s = scene("hourglass2d.toml");
   Simulation<2> sim(s);
