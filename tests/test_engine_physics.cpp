@@ -393,8 +393,10 @@ TEST(Physics, HeapStandsBelowItsAngleAndSlumpsAboveMohrCoulombs) {
 // the flow rule's stress, METHOD.md section 4) the bed's shear stress is
 // mu(I) p >= mu_s p, so the layer's mean speed stays below
 // g (sin 25 - mu_s cos 25) t = 0.77 t m/s (g_x + mu_s g_y with the scene's
-// tilted gravity and mu = mu_s). Measured (2026-12-06): under the moves 0.164, 0.263 and
-// 0.338 m/s; under the projection 0.166, 0.276 and 0.368. A numerical drag
+// tilted gravity and mu = mu_s). Measured (2026-12-07, the scene's 5 grains
+// per cell and axis): under the moves 0.161, 0.257 and 0.328 m/s; under the
+// projection 0.160, 0.260 and 0.337 (with 3: 0.164, 0.263 and 0.338; 0.166,
+// 0.276 and 0.368). A numerical drag
 // fails the first check: the projection's former braking, which took the
 // whole part of a grain's velocity against its move (up to |d| / dt), gave
 // 0.157, 0.217 and 0.222 m/s (docs/validation.md, "Column collapse and
