@@ -245,7 +245,7 @@ def mui(args):
     th, mu_s = math.radians(25), 0.38
     bound = G * (math.sin(th) - mu_s * math.cos(th))
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    for rule, label in [("move", "moves (the default)"), ("project", "projection")]:
+    for rule, label in [("move", "moves"), ("project", "projection (the default)")]:
         out = run(args, f"mui_{rule}", "incline_mui2d",
                   [f"solver.decompaction=\"{rule}\"", "time.frames=36"])
         t, u = [], []
