@@ -5,7 +5,8 @@
     /usr/bin/python3 scripts/validation_figures.py [--only NAME ...] [--reuse]
 
 Each figure runs the shipped scenes with the overrides of the matching test
-(tests/test_engine_physics.cpp, tests/validation_physics.cpp), reads the
+(tests/test_engine_physics.cpp, tests/test_mui_layer.cpp,
+tests/validation_physics.cpp), reads the
 runs' stats.csv and last particle frame, and writes a PNG into
 docs/images/validation/. The runs stay in --work (default
 /tmp/sablier_validation); --reuse skips the runs that finished there. All
@@ -240,12 +241,41 @@ def incline(args):
     save(args, fig, "incline")
 
 
+def infinite_layer(times, cells=200, depth=0.02, theta=25.0, mu_s=0.38, delta_mu=0.26, i0=0.279,
+                   d=5e-4):
+    """The mu(I) layer of incline_mui2d on an infinite incline, from rest: the cells'
+    speeds at each of `times` (the 1D problem of tests/test_mui_layer.cpp, same scheme)."""
+    g_t, g_n = G * math.sin(math.radians(theta)), G * math.cos(math.radians(theta))
+    dz = depth / cells
+    p = RHO * PHI_MAX * g_n * (depth - np.arange(cells) * dz)  # on face i, below cell i
+    max_dt = 0.2 * dz * dz / (delta_mu / i0 * d * math.sqrt(g_n * depth / PHI_MAX))
+    u, t, out = np.zeros(cells), 0.0, []
+    for until in times:
+        while t < until - 1e-12:
+            dt = min(max_dt, until - t)
+            rate = np.maximum(0.0, np.diff(np.concatenate([[0.0], u])) / dz)
+            rate[0] = max(0.0, u[0] / (dz / 2))
+            inertial = rate * d / np.sqrt(p / RHO)
+            mu = mu_s + delta_mu * inertial / (inertial + i0)
+            tau = np.append(mu * p, 0.0)
+            u = u + dt * (g_t + np.diff(tau) / (RHO * PHI_MAX * dz))
+            t += dt
+        out.append(u.copy())
+    return out
+
+
 def mui(args):
-    """A mu(I) layer on a slope keeps accelerating (MuILayerAcceleratesOnASlopeBetweenItsAngles)."""
+    """A mu(I) layer on a slope keeps accelerating, as the infinite layer of the same
+    rheology does (tests/test_mui_layer.cpp)."""
     th, mu_s = math.radians(25), 0.38
     bound = G * (math.sin(th) - mu_s * math.cos(th))
-    fig, ax = plt.subplots(figsize=(6.5, 4))
-    for rule, label in [("move", "moves"), ("project", "projection (the default)")]:
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    ref_t = np.arange(1, 37) / 30.0
+    ref = infinite_layer(ref_t)
+    ax.plot(np.concatenate([[0], ref_t]), [0] + [u.mean() for u in ref], "k:",
+            label="infinite layer, same rheology (1D)")
+    z = (np.arange(200) + 0.5) * 0.02 / 200
+    for i, (rule, label) in enumerate([("move", "moves"), ("project", "projection (the default)")]):
         out = run(args, f"mui_{rule}", "incline_mui2d",
                   [f"solver.decompaction=\"{rule}\"", "time.frames=36"])
         t, u = [], []
@@ -253,15 +283,27 @@ def mui(args):
             f = frame(out, k)
             near = np.abs(f["x"] - 0.5) < 0.025
             t.append(k / 30.0), u.append(np.mean(np.hypot(f["vx"][near], f["vy"][near])))
-        ax.plot(t, u, label=label)
+            if rule == "project" and k in (10, 20):
+                bands = np.clip((f["y"][near] / 0.0025).astype(int), 0, 7)
+                speed = np.hypot(f["vx"][near], f["vy"][near])
+                prof = [speed[bands == b].mean() for b in range(8)]
+                ax2.plot(prof, (np.arange(8) + 0.5) * 2.5, "o", color=f"C{k // 10}",
+                         label=f"grains, {k / 30:.2f} s (mean per 2.5 mm cell)")
+                ax2.plot(ref[k - 1], z * 1000, "-", color=f"C{k // 10}", lw=1,
+                         label=f"infinite layer, {k / 30:.2f} s")
+        ax.plot(t, u, label=label, color=f"C{i}")
         print(f"  {label}: mean speed in the middle " +
-              ", ".join(f"{u[k]:.3f} m/s at {t[k]:.2f} s" for k in (9, 18, 24, 30, 36)))
+              ", ".join(f"{u[k]:.3f} m/s at {t[k]:.2f} s (layer {ref[k - 1].mean():.3f})"
+                        for k in (9, 18, 24, 30, 36)))
     tt = np.linspace(0, 1.2, 50)
     ax.plot(tt, bound * tt, "k--", label="bound g (sin 25 - mu_s cos 25) t")
     ax.set_ylim(0, 0.6)
     ax.set_xlabel("time (s)"), ax.set_ylabel("mean speed, |x - 0.5| < 2.5 cm (m/s)")
-    ax.set_title("incline_mui2d: mu(I) glass beads, 2 cm on a 25 degree slope")
+    ax.set_title("incline_mui2d: mu(I) glass beads, 2 cm on a 25 degree slope", fontsize=10)
     ax.legend(fontsize=8)
+    ax2.set_xlabel("speed (m/s)"), ax2.set_ylabel("height above the bed (mm)")
+    ax2.set_title("profile in the middle, projection", fontsize=10)
+    ax2.legend(fontsize=8)
     fig.tight_layout()
     save(args, fig, "incline_mui")
 
