@@ -164,8 +164,10 @@ double Simulation<D>::move_grains_apart(int moves, double dt) {
       if (!inside(y)) continue;
       if (!obstacles_end.empty()) {  // no move into a solid, or across a thin part of one
         Vec<D> kept = y;
-        put_outside_solids(obstacles_end, kept, &x);
+        double clearance = 0.0;
+        move_outside_solids(obstacles_end, p, x, kept, &clearance);
         if (kept != y) continue;
+        clearance_[p] = clearance;
       }
       x = y;
       // Work against gravity: a grain lifted gains m g height.
@@ -398,7 +400,9 @@ void Simulation<D>::project_move(const std::vector<Obstacle<D>>& obstacles_end, 
     if (len == 0.0) continue;
     Vec<D> y = x + d;
     put_inside_walls(y);
-    put_outside_solids(obstacles_end, y, &x);
+    double clearance = 0.0;
+    move_outside_solids(obstacles_end, p, x, y, &clearance);
+    clearance_[p] = clearance;
     const double lift = std::max(0.0, -gravity_.dot(y - x));  // per unit mass
     move_lift_[p] += rho0_ * mass_volume(p) * lift;
     x = y;

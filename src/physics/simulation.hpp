@@ -90,6 +90,9 @@ class Simulation {
   const SceneConfig& scene() const { return scene_; }
   const DenseGrid<D>& grid() const { return grid_; }
   const Particles<D>& particles() const { return particles_; }
+  // Per grain, the lower bound on its distance to the solids that the last
+  // step kept (clearance_; 0 where unknown).
+  const std::vector<double>& clearances() const { return clearance_; }
   Particles<D>& particles() { return particles_; }
   const ConeProblem<D>& problem() const { return problem_; }
 
@@ -209,9 +212,22 @@ class Simulation {
   // permitting, on the side of `from` (where it came from) when given
   // (transfer.cpp).
   // Returns true, and the surface's outward normal in `held`, when it holds
-  // the grain on the side of a thin part it came from.
+  // the grain on the side of a thin part it came from. `clearance`, when
+  // given, receives a lower bound on x's distance to the solids when the
+  // call returns (0 where it put or held x on a surface; +inf without
+  // solids).
   bool put_outside_solids(const std::vector<Obstacle<D>>& solids, Vec<D>& x,
-                          const Vec<D>* from = nullptr, Vec<D>* held = nullptr) const;
+                          const Vec<D>* from = nullptr, Vec<D>* held = nullptr,
+                          double* clearance = nullptr) const;
+  // Grain p's move from x to y within a step, after advection (the
+  // decompaction's moves): y put outside the solids as put_outside_solids
+  // does, `from` x. The grain's clearance (clearance_) skips the query
+  // where it shows that y is outside every solid and its path crosses
+  // none: the same answer (docs/method.md, "Grains put back out of solids").
+  // Returns y as put_outside_solids leaves it; clearance_[p] then holds for
+  // y if the caller takes y.
+  void move_outside_solids(const std::vector<Obstacle<D>>& solids, std::int64_t p, const Vec<D>& x,
+                           Vec<D>& y, double* clearance_at_y) const;
   // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
   double mass_volume(std::size_t p) const {
     return materials_[particles_.material[p]].mass_ratio * particles_.volume[p];
@@ -305,6 +321,11 @@ class Simulation {
   // move_grains_apart (decompaction.cpp): per node, the relative excess; per
   // grain, the lift and its cell's base node.
   std::vector<double> move_excess_, move_lift_;
+  // Per grain, from advection to the step's end: a lower bound on its
+  // distance to the solids where they end the step, kept through its moves
+  // (each takes its length off); 0 where unknown. Only where every solid's
+  // distance is exact (1-Lipschitz: not a mesh's sampled one).
+  std::vector<double> clearance_;
   std::vector<std::int64_t> move_base_;
   std::vector<Vec<D>> move_local_;  // (x_p - cell origin) / h, as stencil_of takes it
   bool moves_settled_ = false;      // the last moves stopped with no node over-full

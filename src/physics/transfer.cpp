@@ -487,6 +487,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
   const std::vector<Obstacle<D>> obstacles_start = obstacles_at(time_);
   bool driven = false;
   for (const Obstacle<D>& o : obstacles_start) driven |= !o.dynamic && moves_into_sand(o);
+  clearance_.resize(particles_.size());  // each grain's, set below (put_outside_solids)
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t p = 0; p < n; ++p) {
     Vec<D>& x = particles_.position[p];
@@ -558,7 +559,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // fall freely), and carried on by APIC that would grow step after step
     // (measured: a grain held at a wedge's tip reached 7 m/s in 1 s).
     Vec<D> held;
-    if (put_outside_solids(obstacles_end, x, &carried, &held)) {
+    if (put_outside_solids(obstacles_end, x, &carried, &held, &clearance_[p])) {
       Vec<D> n;
       int k = 0;
       obstacle_distance(obstacles_end, x, &n, &k);
