@@ -128,7 +128,8 @@ def energy(args):
     closed = ["boundary.ymax=\"slip\"", "solver.tolerance=1e-6", "solver.max_iterations=20000",
               "time.cfl=0.5", "time.frames=30"]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for rule, label in [("move", "as shipped (grains moved)"), ("push", "decompaction = \"push\"")]:
+    for rule, label in [("project", "the projection (the default)"), ("move", "the moves"),
+                        ("push", "decompaction = \"push\"")]:
         out = run(args, f"energy_{rule}", "collapse2d", closed + [f"solver.decompaction=\"{rule}\""])
         s, p0 = stats(out), frame(out, 0)
         # stats.csv has a row per step, after the step; E(0) is frame 0's: the
