@@ -372,11 +372,12 @@ def silo(args):
 
 
 def refinement(args):
-    """Deposit profiles of the 2D collapse on four grids, as shipped and with moved grains."""
+    """Deposit profiles of the 2D collapse on four grids, pushed and under the default
+    (CollapseConvergesUnderGridRefinement)."""
     fig, axes = plt.subplots(1, 2, figsize=(12, 4), sharey=True)
     grids = [(40, 10), (80, 20), (160, 40), (320, 80)]
     for ax, (rule, ppc, title) in zip(axes, [("push", 3, "decompaction = \"push\", 3 grains per cell"),
-                                            ("move", 4, "as shipped (grains moved), 4 grains per cell")]):
+                                            ("project", 4, "the default (projection), 4 grains per cell")]):
         previous = None
         for k, (nx, ny) in enumerate(grids):
             out = run(args, f"refine_{rule}_{nx}", "collapse2d",

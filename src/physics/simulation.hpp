@@ -223,7 +223,7 @@ class Simulation {
   // decompaction's moves): y put outside the solids as put_outside_solids
   // does, `from` x. The grain's clearance (clearance_) skips the query
   // where it shows that y is outside every solid and its path crosses
-  // none: the same answer (docs/method.md, "Grains put back out of solids").
+  // none: the same answer (docs/method.md, "Frictional obstacles").
   // Returns y as put_outside_solids leaves it; clearance_[p] then holds for
   // y if the caller takes y.
   void move_outside_solids(const std::vector<Obstacle<D>>& solids, std::int64_t p, const Vec<D>& x,
