@@ -1,7 +1,7 @@
 // The mu(I) rheology on an incline (Jop, Forterre & Pouliquen 2006), against
 // two sources: the momentum bound on the layer's mean speed, and the
 // transient of the same continuum on an infinite incline, a 1D problem
-// integrated to convergence (mui_layer_fixture.hpp).
+// integrated to convergence (mui_layer_fixture.hpp; scripts/mui_layer.py draws it).
 #include <gtest/gtest.h>
 
 #include <algorithm>
