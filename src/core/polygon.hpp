@@ -38,6 +38,15 @@ class SolidPolygon {
     lo_ = hi_ = v_.front();
     for (const Point2& p : v_)
       for (int a = 0; a < 2; ++a) lo_[a] = std::min(lo_[a], p[a]), hi_[a] = std::max(hi_[a], p[a]);
+    // Each edge's start, its end's y, direction and squared length, computed once as
+    // signed_distance computed them per call (the same bits): the grains ask
+    // for their distance to the polygons several times per step.
+    for (std::size_t i = 0, n = v_.size(); i < n; ++i) {
+      const Point2& a = v_[i];
+      const Point2& b = v_[(i + 1) % n];
+      const double ex = b[0] - a[0], ey = b[1] - a[1];
+      edges_.push_back({a[0], a[1], b[1], ex, ey, ex * ex + ey * ey});
+    }
   }
 
   // Winding number around (x, y): nonzero inside.
@@ -50,20 +59,25 @@ class SolidPolygon {
   double signed_distance(double x, double y, double* nx, double* ny) const {
     double best = 1e300, qx = x, qy = y;
     std::size_t edge = 0;
-    for (std::size_t i = 0, n = v_.size(); i < n; ++i) {
-      const Point2& a = v_[i];
-      const Point2& b = v_[(i + 1) % n];
-      const double ex = b[0] - a[0], ey = b[1] - a[1];
-      const double len2 = ex * ex + ey * ey;
+    int wind = 0;  // winding_number's, edge by edge
+    for (std::size_t i = 0, n = edges_.size(); i < n; ++i) {
+      const Edge& e = edges_[i];
+      const double ex = e.ex, ey = e.ey, len2 = e.len2;
+      const double side = ex * (y - e.ay) - (x - e.ax) * ey;
+      if (e.ay <= y) {
+        if (e.by > y && side > 0.0) ++wind;
+      } else if (e.by <= y && side < 0.0) {
+        --wind;
+      }
       // A repeated corner: its point is the neighbouring edges' end too,
       // and it has no normal of its own.
       if (!(len2 > 0.0)) continue;
-      const double t = std::clamp(((x - a[0]) * ex + (y - a[1]) * ey) / len2, 0.0, 1.0);
-      const double px = a[0] + t * ex, py = a[1] + t * ey;
+      const double t = std::clamp(((x - e.ax) * ex + (y - e.ay) * ey) / len2, 0.0, 1.0);
+      const double px = e.ax + t * ex, py = e.ay + t * ey;
       const double d2 = (x - px) * (x - px) + (y - py) * (y - py);
       if (d2 < best) best = d2, qx = px, qy = py, edge = i;
     }
-    const bool in = winding(x, y) != 0;
+    const bool in = wind != 0;
     const double dist = std::sqrt(best);
     if (dist > 0.0) {
       const double s = in ? -1.0 : 1.0;
@@ -94,7 +108,11 @@ class SolidPolygon {
   const Point2& upper() const { return hi_; }
 
  private:
+  struct Edge {
+    double ax, ay, by, ex, ey, len2;  // start corner, end's y, corner to corner, squared length
+  };
   std::vector<Point2> v_;
+  std::vector<Edge> edges_;
   Point2 lo_{}, hi_{};
 };
 

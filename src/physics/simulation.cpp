@@ -398,8 +398,9 @@ StepInfo Simulation<D>::step(double dt) {
 // sort (stable) puts them in place, as the constructor's does on a resume.
 template <int D>
 void Simulation<D>::emit_from_spouts(double start) {
-  if (!scene_.spouts.empty())
-    emit_spout_particles<D>(scene_, start, time_, particles_, &obstacles_);
+  if (scene_.spouts.empty()) return;
+  emit_spout_particles<D>(scene_, start, time_, particles_, &obstacles_);
+  clearance_.resize(particles_.size(), 0.0);  // the new grains' is unknown
 }
 
 template <int D>

@@ -321,11 +321,13 @@ class Simulation {
   // move_grains_apart (decompaction.cpp): per node, the relative excess; per
   // grain, the lift and its cell's base node.
   std::vector<double> move_excess_, move_lift_;
-  // Per grain, from advection to the step's end: a lower bound on its
-  // distance to the solids where they end the step, kept through its moves
-  // (each takes its length off); 0 where unknown. Only where every solid's
-  // distance is exact (1-Lipschitz: not a mesh's sampled one).
-  std::vector<double> clearance_;
+  // Per grain: a lower bound on its distance to the solids where they end
+  // the step, set at advection (or, where no solid moves, kept from the
+  // last step less the advection's length) and kept through its moves (each
+  // takes its length off); 0 where unknown. Only where every solid's
+  // distance is exact (1-Lipschitz: not a mesh's sampled one). Follows the
+  // grains through sort_particles.
+  std::vector<double> clearance_, sorted_clearance_;  // the latter: sort_particles' scratch
   std::vector<std::int64_t> move_base_;
   std::vector<Vec<D>> move_local_;  // (x_p - cell origin) / h, as stencil_of takes it
   bool moves_settled_ = false;      // the last moves stopped with no node over-full

@@ -33,6 +33,10 @@ void Simulation<D>::sort_particles() {
   for (std::size_t p = 0; p < n; ++p)  // stable counting sort
     if (cell[p] >= 0) order[count[cell[p]]++] = static_cast<std::int64_t>(p);
   particles_.permute(order);
+  clearance_.resize(n, 0.0);  // each grain's goes with it (transfer_to_particles keeps it)
+  sorted_clearance_.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted_clearance_[k] = clearance_[order[k]];
+  clearance_.swap(sorted_clearance_);
 
   active_cells_.clear();
   for (auto& list : cells_by_parity_) list.clear();
@@ -485,9 +489,11 @@ void Simulation<D>::transfer_to_particles(double dt) {
   // moves: a grain's start carried along with that solid, so that its path
   // is followed relative to it (put_outside_solids).
   const std::vector<Obstacle<D>> obstacles_start = obstacles_at(time_);
-  bool driven = false;
-  for (const Obstacle<D>& o : obstacles_start) driven |= !o.dynamic && moves_into_sand(o);
-  clearance_.resize(particles_.size());  // each grain's, set below (put_outside_solids)
+  bool driven = false, in_place = true;
+  for (const Obstacle<D>& o : obstacles_start) {
+    driven |= !o.dynamic && moves_into_sand(o);
+    in_place &= !o.dynamic && !moves_into_sand(o);
+  }
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (std::int64_t p = 0; p < n; ++p) {
     Vec<D>& x = particles_.position[p];
@@ -558,8 +564,15 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // gradient: the grid does not resolve the part (its nodes beyond it
     // fall freely), and carried on by APIC that would grow step after step
     // (measured: a grain held at a wedge's tip reached 7 m/s in 1 s).
+    // Where every solid stays where the last step left it, the grain's
+    // clearance less the step's length still bounds its distance; where
+    // that shows the step ending outside every solid and crossing none,
+    // that is the query's answer (move_outside_solids).
     Vec<D> held;
-    if (put_outside_solids(obstacles_end, x, &carried, &held, &clearance_[p])) {
+    const double step = (x - from).norm();
+    if (in_place && clearance_[p] >= 2.0 * step + 1e-9 * grid_.h()) {
+      clearance_[p] -= step;
+    } else if (put_outside_solids(obstacles_end, x, &carried, &held, &clearance_[p])) {
       Vec<D> n;
       int k = 0;
       obstacle_distance(obstacles_end, x, &n, &k);
