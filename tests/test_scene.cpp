@@ -33,6 +33,7 @@ TEST(SceneFile, Defaults2D) {
   e.resolution = {40, 20, 1};
   e.gravity = v(0, -9.81);
   e.sand = {SandConfig{SandShape::Box, v(0, 0), v(0.2, 0.4)}};
+  e.sand[0].particles_per_cell = 5;  // the 2D default (scene.hpp)
   const SceneConfig s = parse_scene(kBase2D, "good.toml");
   EXPECT_EQ(s.source, "good.toml");
   EXPECT_DOUBLE_EQ(s.cell_size(), 0.025);
@@ -67,10 +68,10 @@ TEST(SceneFile, EveryKey2D) {
   e.sand = {SandConfig{SandShape::Cylinder, {}, {}, v(0.5, 0.5), 0.25, 0, 3, 0.5, v(1, -0.5)},
             SandConfig{SandShape::Box, v(1, 0), v(2, 0.5)}};
   e.sand[1].material = SandMaterial{2650, 0.7, 5.5, 0.25, MuIConfig{0.2, 0.4, 5e-4}};
-  e.sand[1].particles_per_cell = 3;  // the 2D default
+  e.sand[1].particles_per_cell = 5;  // the 2D default
   SandConfig polygon;
   polygon.shape = SandShape::Polygon;
-  polygon.particles_per_cell = 3;
+  polygon.particles_per_cell = 5;
   polygon.vertices = {v(0.1, 0.8), v(0.4, 0.8), v(0.25, 0.95)};
   e.sand.push_back(polygon);
   e.spouts = {SpoutConfig{v(1.5, 0.8), 0.05, v(0, -2), 0.1, 0.5, 3, 0.25}};

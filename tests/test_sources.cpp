@@ -305,7 +305,7 @@ TEST(Sources, PolygonSeedsItsShoelaceArea) {
     text += (i ? ", [" : "[") + std::to_string(a[0]) + ", " + std::to_string(a[1]) + "]";
   }
   const Particles<2> p = seeded<2>(text + "]\n");
-  const double s = 0.01 / 3;  // h = 0.01, the 2D default of 3 per cell and axis
+  const double s = 0.01 / 5;  // h = 0.01, the 2D default of 5 per cell and axis
   const double expected = std::abs(twice_area) / 2 / (s * s);
   std::cout << "polygon: " << p.size() << " particles, " << expected << " expected\n";
   EXPECT_NEAR(p.size(), expected, 0.03 * expected);
@@ -389,7 +389,7 @@ TEST(Sources, SeedingSkipsTheInsideOfObstacles2D) {
   ASSERT_EQ(holed.size(), outside.size());
   for (std::size_t k = 0; k < outside.size(); ++k)
     ASSERT_TRUE(holed.position[k] == outside[k]) << k;
-  const double s = 0.01 / 3;  // the 2D default spacing
+  const double s = 0.01 / 5;  // the 2D default spacing (5 per cell and axis)
   const double hole = kPi * 0.1 * 0.1 / (s * s);
   EXPECT_NEAR(double(all.size() - holed.size()), hole, 0.02 * hole);
 }

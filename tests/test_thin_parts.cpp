@@ -40,7 +40,7 @@ TEST(ThinParts, SharpTippedVeeHoldsItsSand2D) {
       "dimension = 2\ngravity = [0.0, -9.81]\nseed = 1\n[grid]\nsize = [0.4, 0.5]\n"
       "resolution = [40, 50]\n[boundary]\ndefault = \"slip\"\nymin = \"stick\"\n"
       "ymax = \"free\"\n[[sand]]\nshape = \"box\"\nmin = [0.1, 0.3]\nmax = [0.3, 0.45]\n"
-      "jitter = 0.3\n[[obstacle]]\nshape = \"polygon\"\n"
+      "jitter = 0.3\nparticles_per_cell = 3\n[[obstacle]]\nshape = \"polygon\"\n"
       "vertices = [[0.0, 0.3], [0.0, 0.1], [0.2, 0.1]]\nmu = 0.5\n[[obstacle]]\n"
       "shape = \"polygon\"\nvertices = [[0.4, 0.3], [0.2, 0.1], [0.4, 0.1]]\nmu = 0.5\n";
   const SceneConfig s = parse_scene(text, "vee.toml");

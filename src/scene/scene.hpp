@@ -113,12 +113,18 @@ enum class SandShape { Box, Cylinder, Sphere, Polygon, Mesh };
 class SolidMesh;  // core/mesh.hpp
 
 // Particles per cell and axis when a [[sand]] or [[spout]] block does not
-// say: 3 (9 per cell in 2D, 27 in 3D). Fewer grains per cell let the sand
-// over-compact, the more so on finer grids: the 2D collapse with 2 per
+// say: 5 in 2D (25 per cell), 3 in 3D (27). Fewer grains per cell let the
+// sand over-compact, the more so on finer grids: the 2D collapse with 2 per
 // axis rests at median phi 0.65 at 1 cm cells and 0.89 at 5 mm, against
 // 0.62 with 3 at 5 mm; the 3D collapse with 2 at 0.613 (12.5 mm cells) and
-// 0.624 (8.3 mm), with 3 at 0.603 and 0.606 (docs/method.md).
-constexpr int kDefaultParticlesPerCell = 3;
+// 0.624 (8.3 mm), with 3 at 0.603 and 0.606 (docs/method.md). In 2D, 3 per
+// axis still let flows drift: a mu(I) layer ran up to 15% fast against the
+// infinite layer of its rheology (1.6% with 5), a heap's slump and a
+// collapse's run-out drifted as the cell shrank, and a plough's blade felt
+// 186 N/m against Rankine's 221 (220 with 5) (docs/scenes.md, "How many
+// particles per cell"). 3D flows would want 4, at 2.4 times the grains.
+constexpr int kDefaultParticlesPerCell = 3;  // the 3D default; the struct's until parsed
+constexpr int default_particles_per_cell(int dimension) { return dimension == 2 ? 5 : 3; }
 
 struct SandConfig {
   SandShape shape = SandShape::Box;

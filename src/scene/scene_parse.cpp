@@ -310,6 +310,7 @@ void read_round(TableReader& t, SandConfig& c, const SceneConfig& s) {
 SandConfig read_sand(TableReader t, const SceneConfig& s) {
   const int d = s.dimension;
   SandConfig c;
+  c.particles_per_cell = default_particles_per_cell(d);
   const std::string shape =
       dimension_choice(t, "shape", d == 2 ? kShapes2D : kShapes3D, shapes_of_other_dimension(d), d);
   reject_other_shape_keys(t, shape);
