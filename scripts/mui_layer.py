@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-RHO, PHI_MAX, G = 2500.0, 0.6, 9.81  # the shipped scenes' sand
+RHO, PHI_MAX, G = 2500.0, 0.6, 9.81  # the shipped scenes' sand (validation_figures.py uses these)
 
 
 def infinite_layer(times, cells=200, depth=0.02, theta=25.0, mu_s=0.38, delta_mu=0.26, i0=0.279,

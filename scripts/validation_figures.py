@@ -27,10 +27,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from mui_layer import infinite_layer  # noqa: E402
+from mui_layer import G, PHI_MAX, RHO, infinite_layer  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RHO, PHI_MAX, G = 2500.0, 0.6, 9.81  # the shipped scenes' sand
 
 
 def finished(out):
