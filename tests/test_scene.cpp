@@ -25,7 +25,6 @@ namespace {
 
 using namespace sablier::test;
 
-
 TEST(SceneFile, Defaults2D) {
   SceneConfig e;  // scene.hpp's defaults, but for what the scene gives
   e.dimension = 2;
@@ -132,7 +131,7 @@ TEST(SceneFile, Obstacles) {
   EXPECT_EQ(s.obstacles[0].shape, ObstacleShape::Plane);
   EXPECT_EQ(s.obstacles[0].normal, v(0, 0, 1));
   EXPECT_EQ(s.obstacles[0].point, v(0, 0, 0.02));
-  EXPECT_EQ(s.obstacles[0].mu, 0.5);  // the default
+  EXPECT_EQ(s.obstacles[0].mu, 0.5);               // the default
   EXPECT_EQ(s.obstacles[0].velocity, v(0, 0, 0));  // the default: fixed
   EXPECT_EQ(s.obstacles[1].shape, ObstacleShape::Ball);
   EXPECT_EQ(s.obstacles[1].radius, 0.03);
@@ -304,7 +303,8 @@ TEST(SceneFile, RandomDoublesRoundTripExactly) {
       x->sand[0].velocity[1] = (unit(rng) - 0.5) * 1e5;
       x->sand[0].material.density = 1e4 * unit(rng) + 1e-9;
       x->sand.back().material.mu = 4 * unit(rng) + 1e-9;
-      x->sand.back().material.mu_i = MuIConfig{unit(rng), unit(rng) + 1e-9, 1e-3 * unit(rng) + 1e-12};
+      x->sand.back().material.mu_i =
+          MuIConfig{unit(rng), unit(rng) + 1e-9, 1e-3 * unit(rng) + 1e-12};
       for (std::size_t k = 0; k < x->obstacles.size(); ++k) {
         ObstacleConfig& o = x->obstacles[k];
         o.mu = kMaxObstacleMu * unit(rng);

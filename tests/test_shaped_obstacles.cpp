@@ -288,8 +288,8 @@ TEST(ShapedObstacles, HourglassDrainsThroughItsNeck) {
 // nearest solid (exact distances move by no more than the point; the slack
 // of 1e-9 h covers rounding). The clearances follow the grains through the
 // sort, which drops the grains that left and takes in those a spout
-// emitted. Returns the least distance less clearance over `duration`, and
-// the largest clearance in `largest`.
+// emitted. Returns the least distance less clearance over `duration`; the
+// largest clearance, the grains emitted and those that left in the others.
 double least_distance_less_clearance(const SceneConfig& s, double duration, double* largest,
                                      std::int64_t* emitted, std::int64_t* left) {
   Simulation<2> sim(s);

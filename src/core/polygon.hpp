@@ -38,9 +38,9 @@ class SolidPolygon {
     lo_ = hi_ = v_.front();
     for (const Point2& p : v_)
       for (int a = 0; a < 2; ++a) lo_[a] = std::min(lo_[a], p[a]), hi_[a] = std::max(hi_[a], p[a]);
-    // Each edge's start, its end's y, direction and squared length, computed once as
-    // signed_distance computed them per call (the same bits): the grains ask
-    // for their distance to the polygons several times per step.
+    // Each edge's start, its end's y, direction and squared length, computed
+    // once as signed_distance computed them per call (the same bits): the
+    // grains ask for their distance to the polygons several times per step.
     for (std::size_t i = 0, n = v_.size(); i < n; ++i) {
       const Point2& a = v_[i];
       const Point2& b = v_[(i + 1) % n];

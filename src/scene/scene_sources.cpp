@@ -184,8 +184,8 @@ SpoutConfig read_spout(TableReader t, const SceneConfig& s) {
               "the spout");
   sp.start = t.number("start", 0.0, non_negative());
   if (t.has("stop")) sp.stop = t.number("stop", std::nullopt, Range{sp.start, kInf, true, false});
-  sp.particles_per_cell = t.int_value("particles_per_cell", default_particles_per_cell(s.dimension),
-                                          closed(1, 8));
+  sp.particles_per_cell =
+      t.int_value("particles_per_cell", default_particles_per_cell(s.dimension), closed(1, 8));
   sp.jitter = t.number("jitter", 0.0, closed(0, 1));
   t.reject_unknown();
   check_spout_inside(t, sp, s);
