@@ -228,6 +228,13 @@ class Simulation {
   // y if the caller takes y.
   void move_outside_solids(const std::vector<Obstacle<D>>& solids, std::int64_t p, const Vec<D>& x,
                            Vec<D>& y, double* clearance_at_y) const;
+  // Whether grain p's clearance shows that a step of length `step` from
+  // where it holds ends outside every solid and crosses none, which is the
+  // distance query's own answer (solid_exit.cpp): the skip of advection
+  // and of the moves.
+  bool clear_of_solids(std::int64_t p, double step) const {
+    return clearance_[p] >= 2.0 * step + 1e-9 * grid_.h();
+  }
   // (rho_p / rho_0) V_p: particle p's mass in units of rho_0, m^3.
   double mass_volume(std::size_t p) const {
     return materials_[particles_.material[p]].mass_ratio * particles_.volume[p];

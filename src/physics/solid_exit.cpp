@@ -191,7 +191,7 @@ template <int D>
 void Simulation<D>::move_outside_solids(const std::vector<Obstacle<D>>& solids, std::int64_t p,
                                         const Vec<D>& x, Vec<D>& y, double* clearance_at_y) const {
   const double step = (y - x).norm();
-  if (clearance_[p] >= 2.0 * step + 1e-9 * grid_.h()) {
+  if (clear_of_solids(p, step)) {
     *clearance_at_y = clearance_[p] - step;
     return;
   }

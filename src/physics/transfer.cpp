@@ -570,7 +570,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // that is the query's answer (move_outside_solids).
     Vec<D> held;
     const double step = (x - from).norm();
-    if (in_place && clearance_[p] >= 2.0 * step + 1e-9 * grid_.h()) {
+    if (in_place && clear_of_solids(p, step)) {
       clearance_[p] -= step;
     } else if (put_outside_solids(obstacles_end, x, &carried, &held, &clearance_[p])) {
       Vec<D> n;

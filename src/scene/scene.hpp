@@ -124,7 +124,9 @@ class SolidMesh;  // core/mesh.hpp
 // 186 N/m against Rankine's 221 (220 with 5) (docs/scenes.md, "How many
 // particles per cell"). 3D flows would want 4, at 2.4 times the grains.
 constexpr int kDefaultParticlesPerCell = 3;  // the structs' until the dimension is read
-constexpr int default_particles_per_cell(int dimension) { return dimension == 2 ? 5 : 3; }
+constexpr int default_particles_per_cell(int dimension) {
+  return dimension == 2 ? 5 : kDefaultParticlesPerCell;
+}
 
 struct SandConfig {
   SandShape shape = SandShape::Box;
