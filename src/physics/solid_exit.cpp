@@ -10,6 +10,22 @@
 
 namespace sablier {
 
+// Whether a grain beyond the box's face (axis, side) at x leaves: the face
+// is free, or x is within one of its openings.
+template <int D>
+bool Simulation<D>::leaves_through_free_face(int axis, int side, const Vec<D>& x) const {
+  const int face = 2 * axis + side;
+  if (scene_.boundary.faces[face] == BoundaryType::Free) return true;
+  for (const Opening& o : scene_.boundary.openings) {
+    if (o.face != face) continue;
+    bool within = true;
+    for (int a = 0; a < D; ++a)
+      if (a != axis) within &= x[a] >= o.min[a] && x[a] <= o.max[a];
+    if (within) return true;
+  }
+  return false;
+}
+
 // A point the domain keeps: inside the box, or beyond a free face or an
 // opening (where grains leave).
 template <int D>
@@ -200,6 +216,7 @@ void Simulation<D>::move_outside_solids(const std::vector<Obstacle<D>>& solids, 
 
 #define SABLIER_INSTANTIATE(D)                                                                    \
   template bool Simulation<D>::kept_by_walls(const Vec<D>&) const;                                \
+  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const;           \
   template bool Simulation<D>::put_outside_solids(const std::vector<Obstacle<D>>&, Vec<D>&,       \
                                                   const Vec<D>*, Vec<D>*, double*) const;         \
   template void Simulation<D>::move_outside_solids(const std::vector<Obstacle<D>>&, std::int64_t, \

@@ -462,20 +462,6 @@ void Simulation<D>::transfer_to_grid(double dt) {
 }
 
 template <int D>
-bool Simulation<D>::leaves_through_free_face(int axis, int side, const Vec<D>& x) const {
-  const int face = 2 * axis + side;
-  if (scene_.boundary.faces[face] == BoundaryType::Free) return true;
-  for (const Opening& o : scene_.boundary.openings) {
-    if (o.face != face) continue;
-    bool within = true;
-    for (int a = 0; a < D; ++a)
-      if (a != axis) within &= x[a] >= o.min[a] && x[a] <= o.max[a];
-    if (within) return true;
-  }
-  return false;
-}
-
-template <int D>
 void Simulation<D>::transfer_to_particles(double dt) {
   constexpr int NC = ipow(2, D);
   const auto corner = grid_.corner_offsets();
@@ -502,7 +488,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     Vec<D> u = Vec<D>::Zero();
     Mat<D> grad = Mat<D>::Zero();
     SymVec<D> lambda = SymVec<D>::Zero();
-    double phi = 0.0, left_out = 0.0;
+    double phi = 0.0, left_out = 0.0, yielding = 0.0;
     for (int a = 0; a < NC; ++a) {
       const std::int64_t node = base + corner[a];
       const Vec<D>& ui = P.velocity[node];
@@ -513,12 +499,16 @@ void Simulation<D>::transfer_to_particles(double dt) {
         left_out += s.w[a];
       } else {
         lambda += s.w[a] * P.lambda[row];
+        if (P.state[row] != DPCase::Stick) yielding += s.w[a];
       }
       phi += s.w[a] * node_grain_volume_[node] / P.volume[row];
     }
     // A grain next to a solid reads its stress from the rows of the sand
     // around it, not from those left out inside the solid (build_rows).
-    if (left_out > 0.0 && left_out < 1.0) lambda /= 1.0 - left_out;
+    if (left_out > 0.0 && left_out < 1.0) {
+      lambda /= 1.0 - left_out;
+      yielding /= 1.0 - left_out;
+    }
     if (!u.allFinite()) bad = std::min(bad, p);
     particles_.velocity[p] = u;
     particles_.affine[p] = grad;
@@ -537,8 +527,10 @@ void Simulation<D>::transfer_to_particles(double dt) {
           pressure > 0.0 ? shear * mp.mu_i.grain_diameter / std::sqrt(pressure / mp.density)
                          : std::numeric_limits<double>::infinity();
     }
+    // Cohesion decays with the plastic shear: the shear where the grain's
+    // stress nodes do not stick (docs/method.md, "Cohesion").
     if (mp.cohesion_decay > 0.0)
-      particles_.cohesion[p] *= std::exp(-mp.cohesion_decay * shear * dt);
+      particles_.cohesion[p] *= std::exp(-mp.cohesion_decay * shear * yielding * dt);
     // Advection and the domain's faces: a particle crossing a free face (or
     // an opening) is left outside and dropped at the next sort; on walls it
     // is put back just inside (it can only overshoot when cfl > 1).
@@ -588,10 +580,9 @@ void Simulation<D>::transfer_to_particles(double dt) {
                              ", stage G2P (grid to particles)");
 }
 
-#define SABLIER_INSTANTIATE(D)                                                          \
-  template void Simulation<D>::sort_particles();                                        \
-  template void Simulation<D>::transfer_to_grid(double);                                \
-  template bool Simulation<D>::leaves_through_free_face(int, int, const Vec<D>&) const; \
+#define SABLIER_INSTANTIATE(D)                           \
+  template void Simulation<D>::sort_particles();         \
+  template void Simulation<D>::transfer_to_grid(double); \
   template void Simulation<D>::transfer_to_particles(double);
 SABLIER_INSTANTIATE(2)
 SABLIER_INSTANTIATE(3)
