@@ -234,15 +234,16 @@ TEST(Physics, EnergyNeverGrowsWithCohesion) {
 // when its weight's drive exceeds the plane's strength (the best plane
 // maximises the cohesion needed). The column must stand at 1.1 times the
 // first and fall at 0.9 times the second.
+template <int D = 2>
 double column_top(const SceneConfig& s, double t = 1.0, bool by_frames = false) {
-  Simulation<2> sim(s);
+  Simulation<D> sim(s);
   if (by_frames) {  // each frame's steps as `sablier run` takes them
     for (int k = 1; k <= std::lround(t * s.time.fps); ++k) run_until(sim, k / s.time.fps);
   } else {
     run_until(sim, t);
   }
   std::vector<double> y;
-  for (const Vec<2>& x : sim.particles().position) y.push_back(x[1]);
+  for (const Vec<D>& x : sim.particles().position) y.push_back(x[D - 1]);
   std::sort(y.begin(), y.end());
   return y[static_cast<std::size_t>(0.99 * static_cast<double>(y.size()))];
 }
@@ -283,6 +284,57 @@ TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets) {
   EXPECT_LT(weak, start - 0.03);
 }
 
+// The same in 3D: a square column, b = 10 cm wide and H = 25 cm tall, on a
+// rough floor. In our coordinates the cone is |Dev lambda| <= a lambda_0 + c
+// with a = mu sqrt(2/3) and lambda_0 = Tr lambda / sqrt(6). Lower bound: the
+// uniaxial field (vertical stress s) has |Dev lambda| = s / sqrt(3) and
+// lambda_0 = s / sqrt(6), so it is admissible while c >= rho g H (1 /
+// sqrt(3) - mu / 3). Upper bound: the block above a plane through the
+// column (across its whole width, inclined at theta) slides with a velocity
+// jump at the dilation angle psi that associated flow on the cone needs for
+// a planar jump, sin^2 psi (1/6 - a^2/12) = a^2/4; the jump dissipates
+// 2 c sin(psi) / (sqrt(6) a) per unit area and speed (the cone's support
+// function, c e_0 / a times two for the basis), against the block's weight
+// times sin(theta - psi). A non-associated material is no stronger than the
+// associated one, so it falls below that bound too. In 2D the same
+// construction gives psi = asin(mu) and the bounds above.
+TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets3D) {
+  const double rho = 2500, g = 9.81, mu = 0.5, height = 0.25, width = 0.1;
+  const double stands_above = rho * g * height * (1 / std::sqrt(3.0) - mu / 3);
+  const double a = mu * std::sqrt(2.0 / 3.0);
+  const double sin_psi = std::sqrt(a * a / 4 / (1.0 / 6 - a * a / 12)), psi = std::asin(sin_psi);
+  double falls_below = 0.0;
+  for (int i = 1; i < 900; ++i) {
+    const double theta = i * M_PI / 1800;
+    double volume, area;  // per unit width across the column
+    if (width * std::tan(theta) <= height) {
+      volume = width * (height - width * std::tan(theta) / 2);
+      area = width / std::cos(theta);
+    } else {
+      volume = height * height / std::tan(theta) / 2;
+      area = height / std::sin(theta);
+    }
+    const double dissipation_per_c = area * 2 * sin_psi / (std::sqrt(6.0) * a);
+    falls_below =
+        std::max(falls_below, rho * g * volume * std::sin(theta - psi) / dissipation_per_c);
+  }
+  std::cout << "3D cohesive column: falls below " << falls_below << " Pa, stands above "
+            << stands_above << " Pa (dilation angle " << psi * 180 / M_PI << " degrees)\n";
+  auto with = [&](double c) {
+    return scene("bed3d.toml",
+                 {"grid.size=[0.4,0.4,0.3]", "grid.resolution=[32,32,24]",
+                  "sand.0.min=[0.15,0.15,0.0]", "sand.0.max=[0.25,0.25,0.25]",
+                  "sand.0.particles_per_cell=3", "material.cohesion=" + std::to_string(c)});
+  };
+  const double start = column_top<3>(with(stands_above), 0.0);
+  const double strong = column_top<3>(with(1.1 * stands_above));
+  const double weak = column_top<3>(with(0.9 * falls_below));
+  std::cout << "top " << start << " m at 0 s; after 1 s " << strong << " m at 1.1x, " << weak
+            << " m at 0.9x\n";
+  EXPECT_NEAR(strong, start, 0.005);
+  EXPECT_LT(weak, start - 0.03);
+}
+
 // Cohesion that decays under shear decays with the plastic shear only (the
 // shear where the grain's stress nodes do not stick). A rigid-plastic block
 // above the lower bound above stands with no plastic strain at all, so its
@@ -295,9 +347,9 @@ TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets) {
 // s (the potential energy down 36 J/m of 46 by 2.5 s).
 TEST(Physics, CohesiveBlockAboveItsStrengthKeepsItsCohesion) {
   const double stands_above = 2500 * 9.81 * 0.25 * (1 - 0.5) / 2;
-  const SceneConfig s =
-      scene("cohesive_block2d.toml", {"material.cohesion=" + std::to_string(1.05 * stands_above),
-                                      "material.cohesion_decay=5"});
+  const SceneConfig s = scene(
+      "cohesive_block2d.toml",
+      {"material.cohesion=" + std::to_string(1.05 * stands_above), "material.cohesion_decay=5"});
   ASSERT_EQ(s.resolution[0], 200);  // 5 mm cells, as the creep was measured
   const double start = column_top(s, 0.0), top = column_top(s, 2.5, true);
   std::cout << "cohesive block at 1.05x its lower bound, decaying: top " << start << " m at 0 s, "
