@@ -337,7 +337,7 @@ TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets3D) {
 
 // Cohesion that decays under shear decays with the plastic shear only (the
 // shear where the grain's stress nodes do not stick). A rigid-plastic block
-// above the lower bound above stands with no plastic strain at all, so its
+// above the 2D lower bound (two tests up) stands with no plastic strain, so its
 // cohesion must not wear away. Solved to the default tolerance, though, a
 // block at rest creeps (velocities of about the tolerance times g dt times
 // the slowest mode's amplification: 2 mm/s here at 1e-5, a hundred times

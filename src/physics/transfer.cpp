@@ -528,7 +528,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
                          : std::numeric_limits<double>::infinity();
     }
     // Cohesion decays with the plastic shear: the shear where the grain's
-    // stress nodes do not stick (docs/method.md, "Cohesion").
+    // stress nodes do not stick (docs/method.md, "Conventions").
     if (mp.cohesion_decay > 0.0)
       particles_.cohesion[p] *= std::exp(-mp.cohesion_decay * shear * yielding * dt);
     // Advection and the domain's faces: a particle crossing a free face (or
