@@ -119,6 +119,33 @@ void print_obstacles(const SceneConfig& s) {
   }
 }
 
+// For each cohesive material, the height of a free vertical face its
+// cohesion holds by the lower bound of limit analysis: the weight's
+// uniaxial stress fits the cone while c >= rho g H f, with f = (1 - mu) / 2
+// in 2D and 1 / sqrt(3) - mu / 3 in 3D (docs/scenes.md, "How much cohesion
+// a structure needs"); narrow columns stand somewhat higher.
+template <int D>
+void print_cohesion(const SceneConfig& s, const std::vector<Material>& materials) {
+  const double g = std::sqrt(s.gravity[0] * s.gravity[0] + s.gravity[1] * s.gravity[1] +
+                             s.gravity[2] * s.gravity[2]);
+  for (std::size_t k = 0; k < materials.size(); ++k) {
+    const Material& m = materials[k];
+    if (m.cohesion <= 0.0 || g <= 0.0) continue;
+    const std::string who = k < s.sand.size() ? fmt::format("sand[{}]", k) : "spouts";
+    const double f = D == 2 ? (1.0 - m.mu) / 2.0 : 1.0 / std::sqrt(3.0) - m.mu / 3.0;
+    if (f <= 0.0) {
+      std::printf("cohesion   %s: %g Pa; with mu %g a free vertical face of any height stands\n",
+                  who.c_str(), m.cohesion, m.mu);
+    } else {
+      std::printf(
+          "cohesion   %s: %g Pa holds a free vertical face up to %.3g m high (limit "
+          "analysis's lower bound)%s\n",
+          who.c_str(), m.cohesion, m.cohesion / (m.density * g * f),
+          m.cohesion_decay > 0.0 ? "; it decays where the sand yields" : "");
+    }
+  }
+}
+
 template <int D>
 void print_summary(const SceneConfig& s) {
   std::vector<std::size_t> counts;
@@ -141,6 +168,7 @@ void print_summary(const SceneConfig& s) {
   std::printf("particles  %zu in %zu region(s), grain mass %.6g %s\n", p.size(), s.sand.size(),
               mass, D == 2 ? "kg per metre of depth" : "kg");
   print_sources(s, counts);
+  print_cohesion<D>(s, materials);
   print_obstacles(s);
   std::printf("time       %d frames at %g fps (%g s), %s\n", s.time.frames, s.time.fps,
               s.time.frames / s.time.fps,

@@ -167,6 +167,14 @@ TEST(Cli, CheckAndInfo) {
                           "most 4 rounds per step"),
             std::string::npos)
       << r.output;
+  // The cohesive tower of castle3d: 3000 Pa over rho g (1 / sqrt(3) - mu / 3),
+  // 2500 x 9.81 x 0.41068 Pa/m, holds a free face 0.298 m high.
+  r = sablier("check " + scene_file("castle3d.toml"));
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("cohesion   sand[0]: 3000 Pa holds a free vertical face up to 0.298 m "
+                          "high (limit analysis's lower bound); it decays where the sand yields"),
+            std::string::npos)
+      << r.output;
   r = sablier("info");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.output.find("openmp"), std::string::npos);
