@@ -11,6 +11,14 @@
 
 namespace sablier {
 
+// One edge's share of the winding number around a point at height y (Sunday's
+// crossing rule): the edge runs from height ay to by, and `side` is the cross
+// product of the edge with the vector from its start to the point.
+inline int winding_crossing(double ay, double by, double y, double side) {
+  if (ay <= y) return by > y && side > 0.0 ? 1 : 0;  // upward, the point left of the edge
+  return by <= y && side < 0.0 ? -1 : 0;             // downward, the point right of it
+}
+
 // Winding number of the closed polygon with corners `v` (any points p with
 // p[0], p[1]) around (x, y): nonzero inside, for either orientation
 // (Sunday's crossing rule; no trigonometry).
@@ -21,11 +29,7 @@ int winding_number(const Points& v, double x, double y) {
     const auto& a = v[i];
     const auto& b = v[(i + 1) % n];
     const double side = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
-    if (a[1] <= y) {
-      if (b[1] > y && side > 0.0) ++w;  // upward crossing, (x, y) left of the edge
-    } else if (b[1] <= y && side < 0.0) {
-      --w;  // downward crossing, (x, y) right of the edge
-    }
+    w += winding_crossing(a[1], b[1], y, side);
   }
   return w;
 }
@@ -63,12 +67,7 @@ class SolidPolygon {
     for (std::size_t i = 0, n = edges_.size(); i < n; ++i) {
       const Edge& e = edges_[i];
       const double ex = e.ex, ey = e.ey, len2 = e.len2;
-      const double side = ex * (y - e.ay) - (x - e.ax) * ey;
-      if (e.ay <= y) {
-        if (e.by > y && side > 0.0) ++wind;
-      } else if (e.by <= y && side < 0.0) {
-        --wind;
-      }
+      wind += winding_crossing(e.ay, e.by, y, ex * (y - e.ay) - (x - e.ax) * ey);
       // A repeated corner: its point is the neighbouring edges' end too,
       // and it has no normal of its own.
       if (!(len2 > 0.0)) continue;
