@@ -488,7 +488,9 @@ void Simulation<D>::transfer_to_particles(double dt) {
     Vec<D> u = Vec<D>::Zero();
     Mat<D> grad = Mat<D>::Zero();
     SymVec<D> lambda = SymVec<D>::Zero();
-    double phi = 0.0, left_out = 0.0, yielding = 0.0;
+    const Material& mp = mats[particles_.material[p]];
+    const bool decays = mp.cohesion_decay > 0.0;
+    double phi = 0.0, left_out = 0.0, yielding = 0.0;  // yielding: only where cohesion decays
     for (int a = 0; a < NC; ++a) {
       const std::int64_t node = base + corner[a];
       const Vec<D>& ui = P.velocity[node];
@@ -499,7 +501,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
         left_out += s.w[a];
       } else {
         lambda += s.w[a] * P.lambda[row];
-        if (P.state[row] != DPCase::Stick) yielding += s.w[a];
+        if (decays && P.state[row] != DPCase::Stick) yielding += s.w[a];
       }
       phi += s.w[a] * node_grain_volume_[node] / P.volume[row];
     }
@@ -518,7 +520,6 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // rate for simple shear), used by mu(I) and by the cohesion decay.
     const double shear = 2.0 * deviatoric_norm<D>(to_sym<D>(grad));
     particles_.shear_rate[p] = shear;
-    const Material& mp = mats[particles_.material[p]];
     if (mp.has_mu_i) {
       // Lagged inertial number I = shear d_p / sqrt(P / rho_p), P the bulk
       // pressure, d_p and rho_p the particle's own grains.
@@ -529,8 +530,7 @@ void Simulation<D>::transfer_to_particles(double dt) {
     }
     // Cohesion decays with the plastic shear: the shear where the grain's
     // stress nodes do not stick (docs/method.md, "Conventions").
-    if (mp.cohesion_decay > 0.0)
-      particles_.cohesion[p] *= std::exp(-mp.cohesion_decay * shear * yielding * dt);
+    if (decays) particles_.cohesion[p] *= std::exp(-mp.cohesion_decay * shear * yielding * dt);
     // Advection and the domain's faces: a particle crossing a free face (or
     // an opening) is left outside and dropped at the next sort; on walls it
     // is put back just inside (it can only overshoot when cfl > 1).
