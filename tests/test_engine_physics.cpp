@@ -272,26 +272,36 @@ double column_top(const SceneConfig& s, double t = 1.0, bool by_frames = false) 
   return y[static_cast<std::size_t>(0.99 * static_cast<double>(y.size()))];
 }
 
+// The largest cohesion(theta, volume, length) over planes at theta through a
+// column (through its width, or out through its top): the volume above the
+// plane and the plane's length, per unit width across the column.
+template <class F>
+double worst_plane(double width, double height, const F& cohesion) {
+  double worst = 0.0;
+  for (int i = 1; i < 900; ++i) {
+    const double theta = i * M_PI / 1800;
+    if (width * std::tan(theta) <= height) {
+      worst = std::max(worst, cohesion(theta, width * (height - width * std::tan(theta) / 2),
+                                       width / std::cos(theta)));
+    } else {
+      worst = std::max(
+          worst, cohesion(theta, height * height / std::tan(theta) / 2, height / std::sin(theta)));
+    }
+  }
+  return worst;
+}
+
 TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets) {
   const double rho = 2500, g = 9.81, mu = 0.5, phi_max = 0.6, height = 0.25, width = 0.1;
   const double stands_above = rho * g * height * (1 - mu) / 2;
   const double friction_angle = std::asin(mu);
-  double falls_below = 0.0;  // the plane mechanism, over its angle theta
-  for (int i = 1; i < 900; ++i) {
-    const double theta = i * M_PI / 1800;
-    const double gamma = rho * phi_max * g;
-    double weight, length;
-    if (width * std::tan(theta) <= height) {  // through the width
-      weight = gamma * width * (height - width * std::tan(theta) / 2);
-      length = width / std::cos(theta);
-    } else {  // exits through the top
-      weight = gamma * height * height / std::tan(theta) / 2;
-      length = height / std::sin(theta);
-    }
-    const double c_mc =
-        weight * (std::sin(theta) - std::cos(theta) * mu / std::cos(friction_angle)) / length;
-    falls_below = std::max(falls_below, c_mc * std::cos(friction_angle) / phi_max);
-  }
+  const double falls_below =
+      worst_plane(width, height, [&](double theta, double volume, double length) {
+        const double weight = rho * phi_max * g * volume;
+        const double c_mc =
+            weight * (std::sin(theta) - std::cos(theta) * mu / std::cos(friction_angle)) / length;
+        return c_mc * std::cos(friction_angle) / phi_max;
+      });
   std::cout << "cohesive column: falls below " << falls_below << " Pa, stands above "
             << stands_above << " Pa\n";
   const double start = height - 0.25 * 0.01;  // top particles a quarter cell down
@@ -327,21 +337,11 @@ TEST(Physics, CohesiveColumnStandsOrFallsAsLimitAnalysisBrackets3D) {
   const double stands_above = rho * g * height * (1 / std::sqrt(3.0) - mu / 3);
   const double a = mu * std::sqrt(2.0 / 3.0);
   const double sin_psi = std::sqrt(a * a / 4 / (1.0 / 6 - a * a / 12)), psi = std::asin(sin_psi);
-  double falls_below = 0.0;
-  for (int i = 1; i < 900; ++i) {
-    const double theta = i * M_PI / 1800;
-    double volume, area;  // per unit width across the column
-    if (width * std::tan(theta) <= height) {
-      volume = width * (height - width * std::tan(theta) / 2);
-      area = width / std::cos(theta);
-    } else {
-      volume = height * height / std::tan(theta) / 2;
-      area = height / std::sin(theta);
-    }
-    const double dissipation_per_c = area * 2 * sin_psi / (std::sqrt(6.0) * a);
-    falls_below =
-        std::max(falls_below, rho * g * volume * std::sin(theta - psi) / dissipation_per_c);
-  }
+  const double falls_below =
+      worst_plane(width, height, [&](double theta, double volume, double area) {
+        const double dissipation_per_c = area * 2 * sin_psi / (std::sqrt(6.0) * a);
+        return rho * g * volume * std::sin(theta - psi) / dissipation_per_c;
+      });
   std::cout << "3D cohesive column: falls below " << falls_below << " Pa, stands above "
             << stands_above << " Pa (dilation angle " << psi * 180 / M_PI << " degrees)\n";
   auto with = [&](double c) {
