@@ -11,6 +11,7 @@
 #include "physics/emission.hpp"
 #include "physics/obstacle.hpp"
 #include "physics/simulation.hpp"
+#include "scene/memory_estimate.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_obstacles.hpp"
 
@@ -150,6 +151,8 @@ template <int D>
 void print_summary(const SceneConfig& s) {
   std::vector<std::size_t> counts;
   const Particles<D> p = seed_particles<D>(s, &counts);
+  const std::size_t grains = grains_by_end(s, p.size());
+  refuse_if_too_big(s, grains);
   std::string cells = std::to_string(s.resolution[0]);
   std::string size = fmt::format("{}", s.size[0]);
   long long ncells = s.resolution[0];
@@ -188,14 +191,9 @@ void print_summary(const SceneConfig& s) {
           : std::string("over-full nodes clamped only");
   std::printf("solver     tolerance %g, at most %d sweeps, Anderson depth %d; %s\n", v.tolerance,
               v.max_iterations, v.anderson, rule.c_str());
-  // Dense node fields (velocity, inverse mass, mask, momentum, warm start, mass,
-  // row map) and per-row solver data, plus the particle arrays.
-  constexpr int SD = sym_size(D);
-  const double nodes = static_cast<double>(ncells) * 1.1 + 1e3;
-  const double node_bytes = nodes * 8.0 * (4 * D + SD + 1.5);
-  const double row_bytes = nodes * 8.0 * (ipow(3, D) * D + 2 * SD + SD * SD + 8);
-  const double particle_bytes = p.size() * 8.0 * (3 * D + D * D + SD + 6);
-  std::printf("memory     about %.1f MB\n", (node_bytes + row_bytes + particle_bytes) / 1e6);
+  std::printf("memory     about %.1f MB (%.1f GB available)\n",
+              run_memory_bytes(D, double(ncells), double(grains)) / 1e6,
+              machine_memory_bytes() / 1e9);
 }
 
 }  // namespace
@@ -215,6 +213,10 @@ int check_command(const std::string& path, const std::vector<std::string>& overr
   } catch (const SceneError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: %s: out of memory while seeding the scene's grains\n",
+                 path.c_str());
+    return 4;
   }
 }
 

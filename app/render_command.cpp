@@ -270,6 +270,9 @@ int plot_command(const PlotCommandOptions& o) {
     if (stats.time.empty()) throw BadInput(csv.string() + " has no steps yet");
     if (o.width < 200 || o.width > 8192 || o.height < 200 || o.height > 8192)
       throw BadInput("--width and --height must be 200 to 8192 pixels");
+    if (!o.out.empty() && fs::path(o.out).extension() != ".png")
+      throw BadInput("--out " + o.out +
+                     ": the picture is a PNG; allowed: a file name ending in .png");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: plot: %s\n", e.what());
     return 2;

@@ -18,6 +18,7 @@
 #include "physics/simulation.hpp"
 #include "progress.hpp"
 #include "run_record.hpp"
+#include "scene/memory_estimate.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_obstacles.hpp"
 
@@ -424,6 +425,9 @@ int guarded(F&& body) {
   } catch (const IoError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 3;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: out of memory (`sablier check` gives the scene's size)\n");
+    return 4;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: simulation failed: %s\n", e.what());
     return 4;
@@ -434,6 +438,24 @@ void start_threads_and_signals(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+}
+
+// Seeds the scene's grains, refuses a run this machine cannot hold, then
+// writes the run's first files and runs it: nothing is written, and an
+// earlier run in the folder is not removed, until the grains are seeded.
+template <int D>
+int seed_and_run(const SceneConfig& scene, RunSettings set, const RunOptions& opt) {
+  Simulation<D> sim(scene);
+  refuse_if_too_big(scene, grains_by_end(scene, sim.particles().size()));
+  const fs::path& dir = set.dir;
+  if (holds_run_outputs(dir)) remove_run_outputs(dir);  // --overwrite, checked by the caller
+  ensure_directory((dir / "frames").string());
+  write_file_atomic((dir / "scene.toml").string(), set.scene_text);
+  if (const std::string obj = format_obstacles_obj(scene); !obj.empty())
+    write_file_atomic((dir / "obstacles.obj").string(), obj);
+  for (const SceneMessage& m : thin_solid_messages(scene))  // notes unless --quiet
+    if (!opt.quiet || m.warning) std::fprintf(stderr, "%s\n", m.line().c_str());
+  return Runner<D>(scene, std::move(set), std::move(sim)).run();
 }
 
 int start_run(const RunOptions& opt) {
@@ -450,28 +472,19 @@ int start_run(const RunOptions& opt) {
       std::fprintf(stderr, "error: --out %s: exists and is not a folder\n", opt.out_dir.c_str());
       return 2;
     }
-    if (holds_run_outputs(dir)) {
-      if (!opt.overwrite) {
-        std::fprintf(stderr,
-                     "error: --out %s: the folder holds another run's outputs; pass --overwrite "
-                     "to replace them, or choose another folder\n",
-                     opt.out_dir.c_str());
-        return 2;
-      }
-      remove_run_outputs(dir);
+    if (holds_run_outputs(dir) && !opt.overwrite) {
+      std::fprintf(stderr,
+                   "error: --out %s: the folder holds another run's outputs; pass --overwrite "
+                   "to replace them, or choose another folder\n",
+                   opt.out_dir.c_str());
+      return 2;
     }
     RunSettings set{
         dir,          opt.formats, opt.quiet, opt.stop_after_frame, scene_to_toml(scene),
         opt.compress, opt.grid};
-    ensure_directory((dir / "frames").string());
-    write_file_atomic((dir / "scene.toml").string(), set.scene_text);
-    if (const std::string obj = format_obstacles_obj(scene); !obj.empty())
-      write_file_atomic((dir / "obstacles.obj").string(), obj);
-    for (const SceneMessage& m : thin_solid_messages(scene))  // notes unless --quiet
-      if (!opt.quiet || m.warning) std::fprintf(stderr, "%s\n", m.line().c_str());
     start_threads_and_signals(opt.threads);
-    if (scene.dimension == 2) return Runner<2>(scene, set, Simulation<2>(scene)).run();
-    return Runner<3>(scene, set, Simulation<3>(scene)).run();
+    if (scene.dimension == 2) return seed_and_run<2>(scene, std::move(set), opt);
+    return seed_and_run<3>(scene, std::move(set), opt);
   });
 }
 

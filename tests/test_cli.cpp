@@ -126,6 +126,71 @@ TEST(Cli, BadSceneWritesNothing) {
   EXPECT_FALSE(fs::exists(dir));
 }
 
+// A grid no machine holds (10^10 cells at 450 bytes each) is refused as a bad
+// scene, by check and by run, before anything is allocated or written; so is
+// a block asking for more grains than the machine holds (10^12 in 3D).
+TEST(Cli, SceneTooBigForTheMachineIsRefused) {
+  const fs::path dir = test::fresh_dir("cli_huge");
+  const std::string huge = " --set grid.resolution=[100000,25000]";
+  for (const char* cmd : {"check ", "run "}) {
+    const Result r = sablier(cmd + scene_file("collapse2d.toml") +
+                             (cmd[0] == 'r' ? " --out " + dir.string() : std::string()) + huge);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--set grid.resolution: 2500000000 cells need about"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("GB available; allowed: fewer cells or fewer particles per cell"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(dir));
+  }
+  // With a budget of 0.3 GB (SABLIER_MEMORY_LIMIT), 400 x 100 cells (18 MB)
+  // fit, but the column's 100 x 80 cells at 8 x 8 grains each (512,000
+  // grains at 1 kB) do not.
+  const Result r =
+      test::shell(std::string("SABLIER_MEMORY_LIMIT=3e8 ") + SABLIER_BINARY + " check " +
+                  scene_file("collapse2d.toml") +
+                  " --set grid.resolution=[400,100] --set sand.0.particles_per_cell=8");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(
+      r.output.find(
+          "sand: 40000 cells and about 5.12e+05 grains need about 0.5 GB, more than the 0.3 GB "
+          "available"),
+      std::string::npos)
+      << r.output;
+}
+
+// Command-line mistakes get one line and exit code 2, as bad scenes do; one
+// --set takes one KEY=VALUE, so a scene file after it is still the scene.
+TEST(Cli, CommandLineMistakes) {
+  Result r = sablier("frobnicate");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("unknown command \"frobnicate\"; allowed: run, check, render, plot, "
+                          "info"),
+            std::string::npos)
+      << r.output;
+  for (const char* n : {"-1", "1.5", "abc", "5000"}) {
+    r = sablier(std::string("run ") + scene_file("bed2d.toml") + " --out x --threads " + n);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(std::string("--threads: \"") + n +
+                            "\" is not a whole number from 0 (all cores) to 1024"),
+              std::string::npos)
+        << r.output;
+  }
+  r = sablier("run " + scene_file("bed2d.toml") + " --bogus");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--bogus"), std::string::npos) << r.output;
+  // --set before the scene; --format csv writes the VTK frames too.
+  const fs::path dir = test::fresh_dir("cli_set_first");
+  r = sablier("run --set time.frames=1 " + scene_file("bed2d.toml") + " --out " + dir.string() +
+              " --format csv --quiet");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"frames/particles_00001.csv", "frames/particles_00001.vtp", "series.pvd"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  EXPECT_FALSE(fs::exists(dir / "frames/particles_00002.vtp"));
+}
+
 TEST(Cli, RefusesToMixRuns) {
   const fs::path dir = test::fresh_dir("cli_mix");
   const std::string kSmall = " --set time.frames=2 --quiet";

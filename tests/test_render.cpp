@@ -504,6 +504,9 @@ TEST(RenderCli, BadInputsExitTwoWithOneLine) {
   expect_one_line_error(sablier("render " + dir.string() + " --frames 7"), "no frame 7");
   expect_one_line_error(sablier("render " + dir.string() + " --frames first"), "--frames");
   expect_one_line_error(sablier("render " + dir.string() + " --width 3"), "--width");
+  expect_one_line_error(sablier("plot " + dir.string() + " --out " + (dir / "s.jpg").string()),
+                        "allowed: a file name ending in .png");
+  EXPECT_FALSE(fs::exists(dir / "s.jpg"));
   std::ofstream(dir / "stats.csv") << "step,time\n1,0.1\n";
   expect_one_line_error(sablier("plot " + dir.string()), "no column \"kinetic_energy\"");
   EXPECT_FALSE(fs::exists(dir / "images"));  // nothing written on bad input

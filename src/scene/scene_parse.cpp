@@ -15,6 +15,7 @@
 #include <sstream>
 #include <utility>
 
+#include "scene/memory_estimate.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_obstacles.hpp"
 #include "scene/scene_reader.hpp"
@@ -156,6 +157,10 @@ void read_grid(TableReader g, SceneConfig& s) {
                             "on {}; allowed: grid.size / grid.resolution equal on every axis",
                             h, ha, axis_name(a)));
   }
+  // The grid alone must fit before obstacles' distances are sampled over it
+  // and grains seeded on it (check_regions_seed seeds every block).
+  if (const std::string what = memory_shortfall(s, 0.0, ""); !what.empty())
+    g.fail_at(g.node("resolution"), "resolution", what);
   g.reject_unknown();
 }
 
@@ -354,6 +359,10 @@ SceneConfig read_scene(const toml::table& doc, const std::string& file, const Or
   read_all_obstacles(root, s);  // before [[sand]]: seeding skips their insides
   read_all_spouts(root, s);
   read_all_sand(root, s);
+  double grains = double(grains_by_end(s, 0));
+  for (const SandConfig& b : s.sand) grains += block_grains(s, b);
+  if (const std::string what = memory_shortfall(s, grains, "about "); !what.empty())
+    root.fail_at(root.node("sand"), "sand", what);
   check_regions_seed(root, s);
   root.reject_unknown();
   return s;
