@@ -67,7 +67,9 @@ Checkpoint capture_checkpoint(const Simulation<D>& sim) {
 
 // The simulation a checkpoint describes (decode_checkpoint checked the
 // arrays' sizes). The constructor sorts the particles by cell, as the next
-// step would anyway (a stable sort, so the order is the same). Throws
+// step would anyway (a stable sort, so the order is the same); no frame is
+// written before that step, since an interrupt in a frame's last step
+// writes the frame before its checkpoint (run_command.cpp). Throws
 // CheckpointError naming `source` when the checkpoint's grid is not the
 // scene's.
 template <int D>

@@ -22,6 +22,8 @@ struct RunOptions {
   std::string resume_dir;
   // For tests: after writing this frame, stop as an interrupt would (0: never).
   int stop_after_frame = 0;
+  // For tests: after step N, go on as if Ctrl-C had come during it (0: never).
+  long long interrupt_after_step = 0;
 };
 
 // The particle formats `--format` accepts.

@@ -79,6 +79,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--stop-after-frame", run.stop_after_frame)
       ->check(CLI::NonNegativeNumber)
       ->group("");
+  // For tests of --resume: an interrupt at a chosen step, which a real
+  // signal only hits by chance (the last step of a frame, say).
+  run_cmd->add_option("--interrupt-after-step", run.interrupt_after_step)
+      ->check(CLI::NonNegativeNumber)
+      ->group("");
 
   std::string check_path;
   std::vector<std::string> check_overrides;

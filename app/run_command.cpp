@@ -94,6 +94,7 @@ struct RunSettings {
   int stop_after_frame = 0;
   std::string scene_text;  // scene.toml as written
   bool compress = false, grid = false;
+  long long interrupt_after_step = 0;  // for tests: as if Ctrl-C came in this step
 };
 
 // The checkpoint's formats text: the particle formats, then the output
@@ -191,12 +192,19 @@ class Runner {
           most_crowded_ = std::max(most_crowded_, info.crowding);
         }
         progress.step(sim_.time(), sim_.steps(), info.solve.iterations, info.solve.hit_cap);
-        if (g_interrupted) return stop(progress, f - 1, sub);
+        if (sim_.steps() == set_.interrupt_after_step) g_interrupted = 1;
+        // An interrupt in the frame's last step stops after the frame is
+        // written: its outputs are the state before the next step's sort
+        // (the particles' order) and the last solve (the grid's fields),
+        // which a resumed run would not have.
+        if (g_interrupted && sim_.time() < t_end - 1e-9 * frame_dt)
+          return stop(progress, f - 1, sub);
       }
       sub = 0;
       write_frame(f);
       progress.frame(f, sim_.time(), sim_.steps());
-      if (f == set_.stop_after_frame && f < scene_.time.frames) return stop(progress, f, 0);
+      if ((g_interrupted || f == set_.stop_after_frame) && f < scene_.time.frames)
+        return stop(progress, f, 0);
     }
     write_run_json("finished");
     progress.finish();
@@ -482,6 +490,7 @@ int start_run(const RunOptions& opt) {
     RunSettings set{
         dir,          opt.formats, opt.quiet, opt.stop_after_frame, scene_to_toml(scene),
         opt.compress, opt.grid};
+    set.interrupt_after_step = opt.interrupt_after_step;
     start_threads_and_signals(opt.threads);
     if (scene.dimension == 2) return seed_and_run<2>(scene, std::move(set), opt);
     return seed_and_run<3>(scene, std::move(set), opt);
@@ -557,6 +566,7 @@ int resume_run(const RunOptions& opt) {
     }
   return guarded([&] {
     RunSettings set{dir, {}, opt.quiet, opt.stop_after_frame, read_file(scene_path.string())};
+    set.interrupt_after_step = opt.interrupt_after_step;
     const SceneConfig scene = parse_scene(set.scene_text, scene_path.string());
     const Checkpoint c = decode_checkpoint(read_file(ckpt_path.string()), ckpt_path.string());
     const std::uint64_t hash = fnv1a64(set.scene_text);
