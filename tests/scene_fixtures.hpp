@@ -132,8 +132,27 @@ inline std::string replace(std::string s, const std::string& from, const std::st
   return s.replace(k, from.size(), to);
 }
 
+// kBase2D with a disk of sand: center at line 7, radius at line 8.
+inline std::string disk2d() {
+  return replace(
+      replace(replace(kBase2D, "\"box\"", "\"disk\""), "min = [0.0, 0.0]", "center = [0.5, 0.25]"),
+      "max = [0.2, 0.4]", "radius = 0.1");
+}
+
+// A spout and no sand: the [[spout]] block at line 5, keys appended from line 9.
+inline const std::string kSpout2D = R"(dimension = 2
+[grid]
+size = [1.0, 0.5]
+resolution = [40, 20]
+[[spout]]
+center = [0.5, 0.4]
+radius = 0.05
+velocity = [0.0, -1.0]
+)";
+
 // The message of the SceneError that parsing throws ("" if none).
-inline std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+inline std::string error_of(const std::string& text,
+                            const std::vector<std::string>& overrides = {}) {
   try {
     parse_scene(text, "bad.toml", overrides);
   } catch (const SceneError& e) {

@@ -191,9 +191,7 @@ std::vector<BadScene> boundary_errors() {
 std::vector<BadScene> sand_errors() {
   const std::string& g = kBase2D;
   const std::string& c = kBase3D;
-  const std::string disk = replace(
-      replace(replace(g, "\"box\"", "\"disk\""), "min = [0.0, 0.0]", "center = [0.5, 0.25]"),
-      "max = [0.2, 0.4]", "radius = 0.1");
+  const std::string disk = disk2d();
   return {
       {"no sand", "dimension = 2\n[grid]\nsize = [1.0, 0.5]\nresolution = [40, 20]\n",
        "bad.toml: sand: missing", "at least one [[sand]] block"},
@@ -387,10 +385,59 @@ std::vector<BadScene> obstacle_errors() {
   };
 }
 
+// A required key or table misspelt: the misspelling is reported, at its
+// line, with the missing key it stands for; a missing key with no unknown
+// key like it is still "missing".
+std::vector<BadScene> misspelt_required_keys() {
+  const std::string& g = kBase2D;
+  return {
+      {"misspelt grid table", replace(g, "[grid]", "[gird]"),
+       "bad.toml:2: gird: unknown key \"gird\"; did you mean \"grid\"? (grid.size is missing;",
+       "an array of 2 numbers"},
+      {"misspelt dimension", replace(g, "dimension = 2", "dimenson = 2"),
+       "bad.toml:1: dimenson: unknown key \"dimenson\"; did you mean \"dimension\"?",
+       "(dimension is missing; required: an integer"},
+      {"misspelt sand blocks", replace(g, "[[sand]]", "[[Sand]]"),
+       "bad.toml:5: Sand: unknown key \"Sand\"; did you mean \"sand\"?", "(sand is missing;"},
+      {"misspelt shape", replace(g, "shape =", "shpe ="),
+       "bad.toml:6: sand[0].shpe: unknown key \"shpe\"; did you mean \"shape\"?",
+       "(sand[0].shape is missing; required: one of \"box\""},
+      {"misspelt radius", replace(disk2d(), "radius =", "radus ="),
+       "bad.toml:8: sand[0].radus: unknown key \"radus\"; did you mean \"radius\"?", "radius > 0"},
+      {"misspelt max", replace(g, "max =", "mx ="),
+       "bad.toml:8: sand[0].mx: unknown key \"mx\"; did you mean \"max\"?",
+       "(sand[0].max is missing"},
+      {"misspelt vertices",
+       with("[[obstacle]]\nshape = \"polygon\"\nvertice = [[0.5, 0.1], [0.7, 0.1], [0.6, 0.2]]\n"),
+       "bad.toml:11: obstacle[0].vertice: unknown key", "did you mean \"vertices\"?"},
+      {"misspelt spout key", replace(kSpout2D, "radius =", "raduis ="),
+       "bad.toml:7: spout[0].raduis: unknown key", "did you mean \"radius\"?"},
+      {"missing max beside min", replace(g, "max = [0.2, 0.4]\n", ""),
+       "bad.toml:5: sand[0].max: missing", "2 finite numbers"},
+  };
+}
+
+// Sources that yield no particle in the run.
+std::vector<BadScene> empty_sources() {
+  return {
+      {"spout opening after the run", kSpout2D + "start = 10\n",
+       "bad.toml:9: spout[0].start: the spout opens at 10 s, too late",
+       "run ends at 1 s (time.frames / time.fps), so it emits nothing; allowed: start <= 0.995 s"},
+      {"spout in a run of no frames", kSpout2D + "[time]\nframes = 0\n",
+       "bad.toml:5: spout[0].start: the spout opens at 0 s", "a run longer than 0.005 s"},
+      {"bowtie polygon",
+       replace(replace(kBase2D, "\"box\"", "\"polygon\""), "min = [0.0, 0.0]\nmax = [0.2, 0.4]",
+               "vertices = [[0.1, 0.1], [0.3, 0.3], [0.3, 0.1], [0.1, 0.3]]"),
+       "bad.toml:7: sand[0].vertices: the polygon crosses itself (edges 0 and 2 meet)",
+       "a simple polygon"},
+  };
+}
+
 TEST(SceneFile, BadScenesGetOneLineErrorsWithKeyLineAndAllowed) {
   std::vector<BadScene> cases;
-  for (auto part : {syntax_and_top_level(), grid_errors(), time_material_solver_errors(),
-                    boundary_errors(), sand_errors(), obstacle_errors()})
+  for (auto part :
+       {syntax_and_top_level(), grid_errors(), time_material_solver_errors(), boundary_errors(),
+        sand_errors(), obstacle_errors(), misspelt_required_keys(), empty_sources()})
     cases.insert(cases.end(), part.begin(), part.end());
   EXPECT_GE(cases.size(), 80u);
   std::set<std::string> names;

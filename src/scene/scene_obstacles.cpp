@@ -63,7 +63,39 @@ void reject_other_obstacle_keys(TableReader& t, const std::string& shape) {
     if (std::find(mine.begin(), mine.end(), k) == mine.end())
       reject_keys(
           t, {k},
-          fmt::format("not used by shape \"{}\"; allowed: {}", shape, fmt::join(mine, ", ")));
+          fmt::format("not used by shape \"{}\"; allowed: {}", shape, fmt::join(mine, ", ")),
+          {t.full("shape")});
+}
+
+// The keys beyond the geometry, and which obstacles take them (takes()):
+// the one rule for refusing them and for listing the keys a block takes.
+const Names kMotionKeys{"mu", "velocity", "density", "angle", "axis", "spin", "until"};
+
+// A box, polygon or mesh, or a rigid body, turns: angle, spin (axis in 3D).
+bool turns(const ObstacleConfig& o) {
+  return o.dynamic() || o.shape == ObstacleShape::Box || o.shape == ObstacleShape::Polygon ||
+         o.shape == ObstacleShape::Mesh;
+}
+
+// Whether `o` takes `key` of kMotionKeys; density and the keys that depend on
+// it as far as they are read (rigid bodies turn, and cannot be taken away).
+bool takes(const std::string& key, const ObstacleConfig& o, int d) {
+  if (key == "density")
+    return o.shape != ObstacleShape::Plane && o.shape != ObstacleShape::Cylinder;
+  if (key == "angle") return turns(o);
+  if (key == "axis") return turns(o) && d == 3;
+  if (key == "spin") return turns(o) || o.shape == ObstacleShape::Ball;  // a roller
+  if (key == "until") return !o.dynamic();
+  return true;
+}
+
+// Every key the block of `o` takes, for the list an unknown key gets.
+Names obstacle_keys(const ObstacleConfig& o, int d) {
+  Names keys{"shape"};
+  for (const std::string& k : shape_keys(obstacle_shape_name(o.shape, d))) keys.push_back(k);
+  for (const std::string& k : kMotionKeys)
+    if (takes(k, o, d)) keys.push_back(k);
+  return keys;
 }
 
 double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
@@ -84,6 +116,15 @@ Vec3d unit_normal(TableReader& t, int d) {
   const double len = length(n);
   for (double& x : n) x /= len;
   return n;
+}
+
+// The dotted keys that place `o` in the box: its geometry, its pose and
+// grid.size (for the checks against the box).
+Names placing_keys(const TableReader& t, const ObstacleConfig& o, int d) {
+  Names keys{"grid.size", t.full("angle"), t.full("axis")};
+  for (const std::string& k : shape_keys(obstacle_shape_name(o.shape, d)))
+    keys.push_back(t.full(k));
+  return keys;
 }
 
 // 0 <= mu <= kMaxObstacleMu.
@@ -107,12 +148,14 @@ void check_plane_reaches_box(TableReader& t, const ObstacleConfig& o, const Scen
     t.fail_at(t.node("normal"), "normal",
               "the whole box is on the plane's solid side (the normal points from the solid into "
               "the sand), so no room is left for sand; allowed: a plane with part of the box on "
-              "the side its normal points to");
+              "the side its normal points to",
+              placing_keys(t, o, d));
   if (lowest > eps)
     t.fail_at(t.node("point"), "point",
               fmt::format("the plane misses the box: the box lies {} m or more on its sand side; "
                           "allowed: a plane that cuts or touches the box [0, grid.size]",
-                          lowest));
+                          lowest),
+              placing_keys(t, o, d));
 }
 
 // Other shapes: their bounding box must overlap or touch the box on every axis.
@@ -139,7 +182,8 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
               fmt::format("the obstacle spans [{}, {}] on {}, outside the box [0, {}] "
                           "(grid.size); allowed: an obstacle that reaches into or touches the "
                           "box (its bounding box overlapping [0, grid.size] on every axis)",
-                          lo, hi, axis_name(a), s.size[a]));
+                          lo, hi, axis_name(a), s.size[a]),
+              placing_keys(t, o, s.dimension));
   }
 }
 
@@ -149,37 +193,24 @@ void check_bounds_reach_box(TableReader& t, const ObstacleConfig& o, const Scene
 // sand"), the default since 0.3.0.
 void check_motion(TableReader& t, const ObstacleConfig& o, const SceneConfig& s) {
   if (!moves_into_sand(o, s.dimension) || s.solver.decompaction == Decompaction::Project) return;
-  t.fail_at(t.node("velocity"), "velocity",
+  const char* key = t.has("velocity") ? "velocity" : "spin";  // a solid may turn in place
+  t.fail_at(t.node(key), key,
             fmt::format("a {} moving into the sand needs solver.decompaction = \"project\" (the "
                         "default); allowed: that, or no velocity, or a plane "
                         "moving along itself (velocity . normal = 0, a conveyor belt)",
-                        obstacle_shape_name(o.shape, s.dimension)));
+                        obstacle_shape_name(o.shape, s.dimension)),
+            {"solver.decompaction", t.full("velocity"), t.full("spin"), t.full("normal")});
 }
 
 // A rigid polygon must not cross itself (its mass properties are those of
 // a simple polygon): no two edges that are not neighbours meet.
 void check_simple_polygon(TableReader& t, const ObstacleConfig& o) {
-  const std::vector<Vec3d>& v = o.vertices;
-  const std::size_t n = v.size();
-  const auto cross = [](const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-  };
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j) {
-      if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // neighbours share a corner
-      const Vec3d &a = v[i], &b = v[(i + 1) % n], &c = v[j], &e = v[(j + 1) % n];
-      const double d1 = cross(a, b, c), d2 = cross(a, b, e), d3 = cross(c, e, a),
-                   d4 = cross(c, e, b);
-      bool overlap = true;  // the edges' bounding boxes (for collinear edges)
-      for (int k = 0; k < 2; ++k)
-        overlap = overlap && std::max(std::min(a[k], b[k]), std::min(c[k], e[k])) <=
-                                 std::min(std::max(a[k], b[k]), std::max(c[k], e[k]));
-      if (d1 * d2 <= 0.0 && d3 * d4 <= 0.0 && overlap)
-        t.fail_at(t.node("vertices"), "vertices",
-                  fmt::format("edges {} and {} of the rigid polygon meet; allowed: a polygon that "
-                              "does not cross or touch itself",
-                              i, j));
-    }
+  std::size_t i = 0, j = 0;
+  if (polygon_edges_meet(o.vertices, &i, &j))
+    t.fail_at(t.node("vertices"), "vertices",
+              fmt::format("edges {} and {} of the rigid polygon meet; allowed: a polygon that "
+                          "does not cross or touch itself",
+                          i, j));
 }
 
 // A rigid body's initial orientation: `angle` (degrees, counter-clockwise
@@ -187,27 +218,28 @@ void check_simple_polygon(TableReader& t, const ObstacleConfig& o) {
 // its initial `spin`. A fixed box, polygon or mesh takes them too (turned,
 // turning at a constant rate), a fixed disk or sphere a spin (a roller).
 void read_orientation(TableReader& t, ObstacleConfig& o, int d) {
-  const bool solid = o.shape == ObstacleShape::Box || o.shape == ObstacleShape::Polygon ||
-                     o.shape == ObstacleShape::Mesh;
   for (const char* key : {"angle", "axis", "spin"}) {
-    const bool allowed =
-        o.dynamic() || solid || (o.shape == ObstacleShape::Ball && std::string(key) == "spin");
-    if (t.has(key) && !allowed)
-      t.fail_at(t.node(key), key,
-                fmt::format("a {} does not turn; allowed: angle, spin (and axis in 3D) on a box, "
-                            "{}, or a rigid body; spin on a {} (a roller)",
-                            obstacle_shape_name(o.shape, d), d == 2 ? "polygon" : "mesh",
-                            d == 2 ? "disk" : "sphere"));
+    if (!t.has(key) || takes(key, o, d)) continue;
+    if (turns(o))  // the axis, in 2D
+      t.fail_at(t.node(key), key, "2D bodies turn about z; allowed: axis in 3D scenes only",
+                {"dimension"});
+    t.fail_at(t.node(key), key,
+              fmt::format("a {} does not turn; allowed: angle, spin (and axis in 3D) on a box, "
+                          "{}, or a rigid body; spin on a {} (a roller)",
+                          obstacle_shape_name(o.shape, d), d == 2 ? "polygon" : "mesh",
+                          d == 2 ? "disk" : "sphere"),
+              {t.full("shape"), t.full("density")});
   }
-  if (d == 2) {
-    o.spin[2] = t.number("spin", 0.0, Range());
-  } else {
-    o.spin = t.vector("spin", 3, Vec3d{0, 0, 0}, Range());
+  if (takes("spin", o, d)) {
+    if (d == 2) {
+      o.spin[2] = t.number("spin", 0.0, Range());
+    } else {
+      o.spin = t.vector("spin", 3, Vec3d{0, 0, 0}, Range());
+    }
   }
-  o.angle_degrees = t.number("angle", 0.0, Range{-360.0, 360.0, false, false});
+  if (takes("angle", o, d))
+    o.angle_degrees = t.number("angle", 0.0, Range{-360.0, 360.0, false, false});
   if (!t.has("axis")) return;
-  if (d == 2)
-    t.fail_at(t.node("axis"), "axis", "2D bodies turn about z; allowed: axis in 3D scenes only");
   Vec3d a = t.vector("axis", 3, std::nullopt, Range());
   const double len = length(a);
   if (!(len > 0.0) || !std::isfinite(len))
@@ -234,7 +266,8 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
         t.fail_at(t.node("max"), "max",
                   fmt::format("empty box: max = {} on {} is not above min = {}; allowed: min < "
                               "max on every axis",
-                              o.max[a], axis_name(a), o.min[a]));
+                              o.max[a], axis_name(a), o.min[a]),
+                  {t.full("min")});
   } else if (shape == "polygon") {
     o.shape = ObstacleShape::Polygon;
     o.vertices = read_polygon_vertices(t);
@@ -298,7 +331,8 @@ void check_sample_count(TableReader& t, const ObstacleConfig& o, const SceneConf
               fmt::format("the mesh's distance would be sampled at {:.3g} points (half the cell "
                           "size over its bounds in the box); allowed: at most {:.0e} (a coarser "
                           "grid or a smaller mesh)",
-                          samples, kMaxSamples));
+                          samples, kMaxSamples),
+              {t.full("scale"), t.full("translate"), "grid"});
 }
 
 // Every mesh obstacle's signed distance, sampled at half the cell size
@@ -406,7 +440,8 @@ void check_bodies_clear(TableReader& t, const ObstacleConfig& o, const SceneConf
       t.fail_at(t.node(key), key,
                 fmt::format("the rigid body spans [{}, {}] on {}, not inside the box [0, {}] "
                             "(grid.size); allowed: a body that starts inside the box",
-                            lo, hi, axis_name(a), s.size[a]));
+                            lo, hi, axis_name(a), s.size[a]),
+                placing_keys(t, o, d));
     }
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     const ObstacleConfig& p = s.obstacles[k];
@@ -420,10 +455,13 @@ void check_bodies_clear(TableReader& t, const ObstacleConfig& o, const SceneConf
                             : o.shape == ObstacleShape::Polygon ? "vertices"
                             : o.shape == ObstacleShape::Mesh    ? "file"
                                                                 : "center";
+    Names with = placing_keys(t, o, d);
+    with.push_back(fmt::format("obstacle[{}]", k));
     t.fail_at(t.node(key), key,
               fmt::format("overlaps obstacle[{}] (a {}{}) by {} m at the start; allowed: rigid "
                           "bodies clear of the other obstacles and bodies (touching is clear)",
-                          k, p.dynamic() ? "rigid " : "", obstacle_shape_name(p.shape, d), depth));
+                          k, p.dynamic() ? "rigid " : "", obstacle_shape_name(p.shape, d), depth),
+              with);
   }
 }
 
@@ -438,11 +476,12 @@ ObstacleConfig read_obstacle(TableReader t, SceneConfig& s) {
   o.mu = read_mu(t);
   o.velocity = t.vector("velocity", d, Vec3d{0, 0, 0}, Range());
   if (t.has("density")) {
-    if (o.shape == ObstacleShape::Plane || o.shape == ObstacleShape::Cylinder)
+    if (!takes("density", o, d))
       t.fail_at(t.node("density"), "density",
                 fmt::format("a {} cannot be a rigid body; allowed: density on a {}",
                             obstacle_shape_name(o.shape, d),
-                            d == 2 ? "disk, box or polygon" : "sphere, box or mesh"));
+                            d == 2 ? "disk, box or polygon" : "sphere, box or mesh"),
+                {t.full("shape")});
     o.density = t.number("density", std::nullopt, kDensityRange);
     if (o.shape == ObstacleShape::Polygon || o.shape == ObstacleShape::Mesh) {
       if (o.shape == ObstacleShape::Polygon) check_simple_polygon(t, o);
@@ -458,13 +497,14 @@ ObstacleConfig read_obstacle(TableReader t, SceneConfig& s) {
     o.center = o.centroid;
   }
   if (t.has("until")) {
-    if (o.dynamic())
+    if (!takes("until", o, d))
       t.fail_at(t.node("until"), "until",
-                "a rigid body cannot be taken away; allowed: until on fixed obstacles only");
+                "a rigid body cannot be taken away; allowed: until on fixed obstacles only",
+                {t.full("density")});
     o.until = t.number("until", std::nullopt, kPositive);
   }
   check_motion(t, o, s);
-  t.reject_unknown();
+  t.reject_unknown(obstacle_keys(o, d));
   if (o.shape == ObstacleShape::Plane) {
     check_plane_reaches_box(t, o, s);
   } else {
@@ -508,13 +548,7 @@ const char* obstacle_shape_name(ObstacleShape shape, int dimension) {
 std::vector<std::string> obstacle_scene_keys() {
   Names keys{"obstacle[].shape"};
   for (const std::string& k : kGeometryKeys) keys.push_back("obstacle[]." + k);
-  keys.push_back("obstacle[].mu");
-  keys.push_back("obstacle[].velocity");
-  keys.push_back("obstacle[].density");
-  keys.push_back("obstacle[].angle");
-  keys.push_back("obstacle[].axis");
-  keys.push_back("obstacle[].spin");
-  keys.push_back("obstacle[].until");
+  for (const std::string& k : kMotionKeys) keys.push_back("obstacle[]." + k);
   return keys;
 }
 

@@ -155,7 +155,8 @@ void read_grid(TableReader g, SceneConfig& s) {
       g.fail_at(g.node("resolution"), "resolution",
                 fmt::format("cells are not cubic: grid.size / grid.resolution is {} on x but {} "
                             "on {}; allowed: grid.size / grid.resolution equal on every axis",
-                            h, ha, axis_name(a)));
+                            h, ha, axis_name(a)),
+                {"grid.size"});
   }
   // The grid alone must fit before obstacles' distances are sampled over it
   // and grains seeded on it (check_regions_seed seeds every block).
@@ -166,6 +167,7 @@ void read_grid(TableReader g, SceneConfig& s) {
 
 // The mu_i table of [material] or of a [[sand]] block: all three keys.
 std::optional<MuIConfig> read_mu_i(TableReader& t) {
+  t.node("mu_i");  // known even when absent: suggested for misspellings
   if (!t.has("mu_i")) return std::nullopt;
   TableReader mi = t.child("mu_i");
   MuIConfig c;
@@ -174,17 +176,20 @@ std::optional<MuIConfig> read_mu_i(TableReader& t) {
   return c;
 }
 
-void fail_cohesion_without_friction(TableReader& t, double cohesion) {
+// `mu`: the dotted keys the friction came from.
+void fail_cohesion_without_friction(TableReader& t, double cohesion, const Names& mu) {
   t.fail_at(t.node("cohesion"), "cohesion",
             fmt::format("{} needs friction (the yield cone's apex is at -cohesion/mu); "
                         "allowed: cohesion = 0 when mu = 0",
-                        cohesion));
+                        cohesion),
+            mu);
 }
 
 void read_material(TableReader m, SceneConfig& s) {
   MaterialConfig& mat = s.material;
   read_fields(m, mat, kMaterialFields, false);
-  if (mat.cohesion > 0.0 && mat.mu <= 0.0) fail_cohesion_without_friction(m, mat.cohesion);
+  if (mat.cohesion > 0.0 && mat.mu <= 0.0)
+    fail_cohesion_without_friction(m, mat.cohesion, {m.full("mu")});
   mat.mu_i = read_mu_i(m);
   m.reject_unknown();
 }
@@ -207,33 +212,36 @@ SandMaterial read_sand_material(TableReader& t, const SceneConfig& s) {
     t.node(f.key);  // known even when absent: suggested for misspellings
     if (t.has(f.key)) sm.*f.member = t.number(f.key, std::nullopt, material_range(f.key));
   }
-  t.node("mu_i");
   sm.mu_i = read_mu_i(t);
   const double cohesion = sm.cohesion.value_or(s.material.cohesion);
   const double mu = sm.mu.value_or(s.material.mu);
   if (cohesion > 0.0 && mu <= 0.0) {
-    if (sm.cohesion) fail_cohesion_without_friction(t, cohesion);
+    if (sm.cohesion) fail_cohesion_without_friction(t, cohesion, {t.full("mu"), "material.mu"});
     t.fail_at(t.node("mu"), "mu",
               fmt::format("{} leaves no friction for the cohesion {} of [material] (the yield "
                           "cone's apex is at -cohesion/mu); allowed: mu > 0, or cohesion = 0 in "
                           "this block",
-                          mu, cohesion));
+                          mu, cohesion),
+              {"material.cohesion"});
   }
   return sm;
 }
 
 // The opening's tangential extent must lie on its face.
 void check_opening(TableReader& o, const Opening& op, const SceneConfig& s) {
+  const Names with{o.full("min"), o.full("max"), o.full("face"), "grid.size"};
   for (int a = 0; a < s.dimension; ++a) {
     if (a == op.face / 2) continue;
     if (op.min[a] > op.max[a])
       o.fail_at(o.node("max"), "max",
                 fmt::format("{} on {} is below min = {}; allowed: min <= max", op.max[a],
-                            axis_name(a), op.min[a]));
+                            axis_name(a), op.min[a]),
+                with);
     if (op.min[a] < 0.0 || op.max[a] > s.size[a])
       o.fail_at(o.node(op.min[a] < 0.0 ? "min" : "max"), op.min[a] < 0.0 ? "min" : "max",
                 fmt::format("[{}, {}] on {} leaves the face; allowed: within [0, {}]", op.min[a],
-                            op.max[a], axis_name(a), s.size[a]));
+                            op.max[a], axis_name(a), s.size[a]),
+                with);
   }
 }
 
@@ -256,7 +264,7 @@ void read_boundary(TableReader b, SceneConfig& s) {
   const Names faces(kFaces.begin(), kFaces.begin() + 2 * d);
   if (d == 2)
     reject_keys(b, {"zmin", "zmax"},
-                "only valid in 3D scenes; allowed in 2D: xmin, xmax, ymin, ymax");
+                "only valid in 3D scenes; allowed in 2D: xmin, xmax, ymin, ymax", {"dimension"});
   const std::string fallback = b.choice("default", "slip", kBoundaryTypes);
   // In 2D, zmin and zmax keep the struct's value: the scene has no such faces.
   for (std::size_t f = 0; f < faces.size(); ++f)
@@ -269,19 +277,11 @@ void read_boundary(TableReader b, SceneConfig& s) {
   b.reject_unknown();
 }
 
-void check_inside(TableReader& t, const SceneConfig& s, const std::string& key, double lo,
-                  double hi, int axis) {
-  const double eps = 1e-12 * s.size[axis];
-  if (lo < -eps || hi > s.size[axis] + eps)
-    t.fail_at(t.node(key), key,
-              fmt::format("the sand region [{}, {}] on {} leaves the box; allowed: within "
-                          "[0, {}] (grid.size)",
-                          lo, hi, axis_name(axis), s.size[axis]));
-}
-
 void read_box(TableReader& t, SandConfig& c, const SceneConfig& s) {
   const int d = s.dimension;
-  reject_keys(t, {"center", "radius", "height"}, "not used by shape \"box\"; allowed: min, max");
+  reject_keys(t, {"center", "radius", "height"}, "not used by shape \"box\"; allowed: min, max",
+              {t.full("shape")});
+  const Names with{t.full("min"), t.full("max")};
   c.shape = SandShape::Box;
   c.min = t.vector("min", d, std::nullopt, Range());
   c.max = t.vector("max", d, std::nullopt, Range());
@@ -289,8 +289,9 @@ void read_box(TableReader& t, SandConfig& c, const SceneConfig& s) {
     if (!(c.min[a] < c.max[a]))
       t.fail_at(t.node("max"), "max",
                 fmt::format("empty box: max = {} on {} is not above min = {}; allowed: min < max",
-                            c.max[a], axis_name(a), c.min[a]));
-    check_inside(t, s, c.min[a] < 0.0 ? "min" : "max", c.min[a], c.max[a], a);
+                            c.max[a], axis_name(a), c.min[a]),
+                with);
+    check_inside(t, s, c.min[a] < 0.0 ? "min" : "max", c.min[a], c.max[a], a, with);
   }
 }
 
@@ -299,17 +300,20 @@ void read_round(TableReader& t, SandConfig& c, const SceneConfig& s) {
   const int d = s.dimension;
   reject_keys(t, {"min", "max"},
               d == 2 ? "not used by shape \"disk\"; allowed: center, radius"
-                     : "not used by shape \"cylinder\"; allowed: center, radius, height");
-  if (d == 2) reject_keys(t, {"height"}, "only used by 3D cylinders; allowed: center, radius");
+                     : "not used by shape \"cylinder\"; allowed: center, radius, height",
+              {t.full("shape")});
+  if (d == 2)
+    reject_keys(t, {"height"}, "only used by 3D cylinders; allowed: center, radius", {"dimension"});
+  const Names with{t.full("center"), t.full("radius"), t.full("height")};
   c.shape = SandShape::Cylinder;
   c.center = t.vector("center", d, std::nullopt, Range());
   c.radius = t.number("radius", std::nullopt, positive());
   if (d == 3) c.height = t.number("height", std::nullopt, positive());
   for (int a = 0; a < 2; ++a)
-    check_inside(t, s, "center", c.center[a] - c.radius, c.center[a] + c.radius, a);
+    check_inside(t, s, "center", c.center[a] - c.radius, c.center[a] + c.radius, a, with);
   if (d == 3)
     check_inside(t, s, c.center[2] < 0.0 ? "center" : "height", c.center[2], c.center[2] + c.height,
-                 2);
+                 2, with);
 }
 
 SandConfig read_sand(TableReader t, const SceneConfig& s) {
@@ -337,7 +341,7 @@ void read_all_sand(TableReader& root, SceneConfig& s) {
   const toml::array* list = root.array_of_tables("sand");
   const std::string required = "at least one [[sand]] block (or a [[spout]])";
   if ((!list || list->empty()) && !s.spouts.empty()) return;  // all sand poured in
-  if (!list) root.fail("sand", "missing; required: " + required);
+  if (!list) root.fail_missing("sand", required);
   if (list->empty()) root.fail_at(root.node("sand"), "sand", "empty; required: " + required);
   root.for_each_table(*list, "sand",
                       [&](TableReader t) { s.sand.push_back(read_sand(std::move(t), s)); });
@@ -393,14 +397,32 @@ bool bare_word(const std::string& v) {
   });
 }
 
+bool parses(const std::string& toml_text) {
+  try {
+    toml::parse(toml_text);
+    return true;
+  } catch (const toml::parse_error&) {
+    return false;
+  }
+}
+
 // The value as a one-key TOML table {v = value}.
 toml::table parse_value(const std::string& text, const std::string& value) {
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + value, std::string_view("--set"));
   } catch (const toml::parse_error&) {
-    if (!bare_word(value)) bad_override(text, fmt::format("\"{}\" is not a TOML value", value));
-    parsed.insert("v", value);
+    if (bare_word(value)) {
+      parsed.insert("v", value);
+    } else if (value.empty() || std::strchr("[{\"'", value[0]) ||
+               !parses("v = \"" + value + "\"")) {
+      bad_override(text, fmt::format("\"{}\" is not a TOML value", value));
+    } else {  // a file name, words: only bare words go unquoted
+      const std::string key = text.substr(0, text.find('='));
+      bad_override(text, fmt::format("\"{0}\" is not a TOML value (a string other than a bare "
+                                     "word needs quotes: --set '{1}=\"{0}\"')",
+                                     value, key));
+    }
   }
   if (parsed.size() != 1) bad_override(text, fmt::format("\"{}\" is not one value", value));
   return parsed;
@@ -432,7 +454,7 @@ toml::node* step_into(toml::node* cur, const std::string& name, const std::strin
                                      "cannot add them",
                                      dotted));
     t.insert(name, toml::table{});
-    origins[dotted] = "--set";
+    origins[dotted] = {text, true};
   }
   return t.get(name);
 }
@@ -450,11 +472,15 @@ void apply_override(toml::table& doc, const std::string& text, Origins& origins)
     if (!cur->is_table() && !cur->is_array_of_tables())
       bad_override(text, fmt::format("{} is a value, not a table", dotted));
   }
+  if (!cur->is_table() && is_index(keys.back()))
+    bad_override(text, fmt::format("a whole [[{0}]] block cannot be set; set its keys one by one, "
+                                   "e.g. --set {0}.{1}.KEY=VALUE",
+                                   dotted, keys.back()));
   if (!cur->is_table())
     bad_override(text, fmt::format("{} holds [[blocks]]: give an index, e.g. {}.0.{}", dotted,
                                    dotted, keys.back()));
   cur->as_table()->insert_or_assign(keys.back(), std::move(*value.get("v")));
-  origins[(dotted.empty() ? "" : dotted + ".") + keys.back()] = "--set";
+  origins[(dotted.empty() ? "" : dotted + ".") + keys.back()] = {text, false};
 }
 
 }  // namespace

@@ -42,6 +42,31 @@ std::string parent_key(const std::string& key) {
   return p == std::string::npos ? std::string() : key.substr(0, p);
 }
 
+// Whether the dotted key `inner` lies within `outer`: "sand[0].radius" within
+// "sand[0]" and "sand".
+bool within(const std::string& inner, const std::string& outer) {
+  return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+         (inner[outer.size()] == '.' || inner[outer.size()] == '[');
+}
+
+// The names known_scene_keys() gives in the table `prefix` ("", "grid",
+// "sand[2]", "sand[0].mu_i"): "size" in "grid", "sand" at the top level.
+std::vector<std::string> keys_known_in(const std::string& prefix) {
+  std::string pattern;  // "sand[2].mu_i" -> "sand[].mu_i", as known_scene_keys() has it
+  for (std::size_t i = 0; i < prefix.size(); ++i) {
+    pattern += prefix[i];
+    if (prefix[i] == '[') i = prefix.find(']', i) - 1;
+  }
+  if (!pattern.empty()) pattern += '.';
+  static const std::vector<std::string> all = known_scene_keys();
+  std::vector<std::string> names;
+  for (const std::string& k : all)
+    if (k.compare(0, pattern.size(), pattern) == 0)
+      names.push_back(
+          k.substr(pattern.size(), k.find_first_of(".[", pattern.size()) - pattern.size()));
+  return names;
+}
+
 std::string component_name(int k) { return fmt::format("component {} ({}) = ", k, "xyz"[k]); }
 
 // "file:7: material.mu: what", or "--set material.mu: what" for overrides.
@@ -101,30 +126,73 @@ TableReader TableReader::child(const std::string& key) {
     fail_at(
         n, key,
         fmt::format("expected a table, found {}; allowed: a [{}] table", describe(*n), full(key)));
-  return sub(n ? n->as_table() : nullptr, full(key));
+  TableReader c = sub(n ? n->as_table() : nullptr, full(key));
+  if (!n) c.parent_ = table_, c.parent_prefix_ = prefix_;
+  return c;
+}
+
+// The override that gave `dotted` or a table above it (null if none).
+const TableReader::Override* TableReader::override_of(const std::string& dotted) const {
+  if (!origins_) return nullptr;
+  for (std::string k = dotted; !k.empty(); k = parent_key(k)) {
+    const auto it = origins_->find(k);
+    if (it != origins_->end()) return &it->second;
+  }
+  return nullptr;
 }
 
 // A value given by --set (or inside one) is reported as `--set`, else file:line.
-std::string TableReader::location(const toml::source_region& src, const std::string& key) const {
-  if (origins_) {
-    for (std::string k = full(key); !k.empty(); k = parent_key(k)) {
-      const auto it = origins_->find(k);
-      if (it != origins_->end()) return it->second;
-    }
-  }
-  return where(src, file_);
+std::string TableReader::location(const toml::source_region& src, const std::string& dotted) const {
+  return override_of(dotted) ? "--set" : where(src, file_);
 }
 
-// A missing key is reported at its table's line (none for the top level).
-void TableReader::fail(const std::string& key, const std::string& what) const {
+void TableReader::fail_at(const toml::node* n, const std::string& key, const std::string& what,
+                          const std::vector<std::string>& with) const {
+  // Without a node, the table's line (none for the top level).
   const toml::source_region none{};
-  const toml::source_region& src = table_ && !prefix_.empty() ? table_->source() : none;
-  throw scene_error(location(src, key), full(key), what);
+  const toml::source_region& src = n                            ? n->source()
+                                   : table_ && !prefix_.empty() ? table_->source()
+                                                                : none;
+  const Override* blamed = override_of(full(key));
+  std::vector<std::string> texts;
+  if (origins_)
+    for (const auto& [dotted, o] : *origins_) {
+      // A table --set created holds the file's defaults, not the override's
+      // values; the blamed key's own override is named already.
+      if (o.created || &o == blamed) continue;
+      const bool read = std::any_of(with.begin(), with.end(), [&](const std::string& w) {
+        return w == dotted || within(w, dotted) || within(dotted, w);
+      });
+      if (read && std::find(texts.begin(), texts.end(), o.text) == texts.end())
+        texts.push_back(o.text);
+    }
+  const std::string also =
+      texts.empty() ? "" : fmt::format(" (with --set {})", fmt::join(texts, ", --set "));
+  throw scene_error(location(src, full(key)), full(key), what + also);
 }
 
-void TableReader::fail_at(const toml::node* n, const std::string& key,
-                          const std::string& what) const {
-  throw scene_error(location(n->source(), key), full(key), what);
+void TableReader::fail_misspelt(const toml::table& table, const std::string& prefix,
+                                const std::string& name, const std::string& what) const {
+  const std::vector<std::string> known = keys_known_in(prefix);
+  std::vector<std::string> unknown;
+  for (const auto& [k, v] : table)
+    if (std::find(known.begin(), known.end(), k.str()) == known.end())
+      unknown.emplace_back(k.str());
+  const std::string typo = closest_key(name, unknown);
+  if (typo.empty()) return;
+  const std::string dotted = prefix.empty() ? typo : prefix + "." + typo;
+  throw scene_error(location(table.get(typo)->source(), dotted), dotted,
+                    fmt::format("unknown key \"{}\"; did you mean \"{}\"? ({})", typo, name, what));
+}
+
+void TableReader::fail_missing(const std::string& key, const std::string& required) const {
+  const std::string what = "missing; required: " + required;
+  if (table_) fail_misspelt(*table_, prefix_, key, full(key) + " is " + what);
+  if (parent_) {
+    const std::string name = prefix_.substr(parent_prefix_.empty() ? 0 : parent_prefix_.size() + 1);
+    fail_misspelt(*parent_, parent_prefix_, name, full(key) + " is " + what);
+  }
+  fail_at(nullptr, key, what);
 }
 
 const toml::node* TableReader::node(const std::string& key) {
@@ -135,7 +203,7 @@ const toml::node* TableReader::node(const std::string& key) {
 const toml::node* TableReader::required(const std::string& key, bool have_fallback,
                                         const std::string& allowed) {
   const toml::node* n = node(key);
-  if (!n && !have_fallback) fail(key, "missing; required: " + allowed);
+  if (!n && !have_fallback) fail_missing(key, allowed);
   return n;
 }
 
@@ -222,7 +290,8 @@ const toml::array* TableReader::array(const std::string& key, int n, bool have_f
   if (static_cast<int>(a->size()) != n)
     fail_at(node, key,
             fmt::format("expected {} components (one per axis), found {}; allowed: {}", n,
-                        a->size(), allowed));
+                        a->size(), allowed),
+            {"dimension"});
   return a;
 }
 
@@ -269,8 +338,9 @@ const toml::array* TableReader::array_of_tables(const std::string& key) {
 
 void TableReader::reject_unknown(const std::vector<std::string>& known) const {
   if (!table_) return;
-  std::vector<std::string> candidates(read_.begin(), read_.end());
-  candidates.insert(candidates.end(), known.begin(), known.end());
+  std::set<std::string> names = read_;
+  names.insert(known.begin(), known.end());
+  const std::vector<std::string> candidates(names.begin(), names.end());
   for (const auto& [k, v] : *table_) {
     const std::string key(k.str());
     if (std::find(candidates.begin(), candidates.end(), key) != candidates.end()) continue;
@@ -282,9 +352,10 @@ void TableReader::reject_unknown(const std::vector<std::string>& known) const {
   }
 }
 
-void reject_keys(TableReader& t, const std::vector<std::string>& keys, const std::string& why) {
+void reject_keys(TableReader& t, const std::vector<std::string>& keys, const std::string& why,
+                 const std::vector<std::string>& with) {
   for (const std::string& k : keys)
-    if (t.has(k)) t.fail_at(t.node(k), k, why);
+    if (t.has(k)) t.fail_at(t.node(k), k, why, with);
 }
 
 std::string dimension_choice(TableReader& t, const std::string& key,
@@ -295,7 +366,8 @@ std::string dimension_choice(TableReader& t, const std::string& key,
     t.fail_at(
         n, key,
         fmt::format("\"{}\" is only valid in {} scenes; allowed in {}D: {}", n->as_string()->get(),
-                    dimension == 2 ? "3D" : "2D", dimension, quoted_list(here)));
+                    dimension == 2 ? "3D" : "2D", dimension, quoted_list(here)),
+        {"dimension"});
   return t.choice(key, std::nullopt, here);
 }
 

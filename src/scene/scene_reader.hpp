@@ -41,8 +41,14 @@ struct Range {
 
 class TableReader {
  public:
-  // Dotted keys (and tables) set by --set, mapped to the origin to report.
-  using Origins = std::map<std::string, std::string>;
+  // The --set override that set a dotted key (as full() names it, "sand[0].radius"),
+  // or that created a table to hold one (`created`: the table's other keys are
+  // the file's defaults, not the override's).
+  struct Override {
+    std::string text;  // "sand.0.radius=0.15", as given
+    bool created = false;
+  };
+  using Origins = std::map<std::string, Override>;
 
   // `table` may be null (an absent optional table: every key takes its default).
   TableReader(const toml::table* table, std::string prefix, std::string file,
@@ -52,7 +58,8 @@ class TableReader {
   TableReader sub(const toml::table* table, const std::string& prefix) const {
     return TableReader(table, prefix, file_, origins_);
   }
-  // A reader for the sub-table `key` (absent: an empty reader).
+  // A reader for the sub-table `key` (absent: an empty reader, which still
+  // knows where the table was looked for, to suggest a misspelt one).
   TableReader child(const std::string& key);
 
   bool has(const std::string& key) const { return table_ && table_->contains(key); }
@@ -82,12 +89,21 @@ class TableReader {
   // Throws for keys present in the table but neither read nor in `known`.
   void reject_unknown(const std::vector<std::string>& known = {}) const;
 
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
-  [[noreturn]] void fail_at(const toml::node* n, const std::string& key,
-                            const std::string& what) const;
+  // A required key is absent: "missing; required: <required>", unless the
+  // table (or, when the table itself is absent, its parent) has an unknown
+  // key that is a likely misspelling of it: then that key is reported, at
+  // its line, with the right name suggested.
+  [[noreturn]] void fail_missing(const std::string& key, const std::string& required) const;
+  // At `n` (the table's line when null). `with` names, as full() does, the
+  // other keys a check across keys read ("grid.size", full("radius"), or a
+  // whole table): those that --set gave are named after the message,
+  // "(with --set sand.0.radius=0.15)", since the line blamed is the file's.
+  [[noreturn]] void fail_at(const toml::node* n, const std::string& key, const std::string& what,
+                            const std::vector<std::string>& with = {}) const;
   std::string full(const std::string& key) const {
     return prefix_.empty() ? key : prefix_ + "." + key;
   }
+  const std::string& prefix() const { return prefix_; }
 
  private:
   const toml::node* required(const std::string& key, bool have_fallback,
@@ -99,17 +115,25 @@ class TableReader {
   long whole_number(const toml::node* n, const std::string& key, const std::string& allowed) const;
   void check_range(const toml::node* n, const std::string& key, double v, const Range& range,
                    const std::string& prefix) const;
-  std::string location(const toml::source_region& src, const std::string& key) const;
+  std::string location(const toml::source_region& src, const std::string& dotted) const;
+  const Override* override_of(const std::string& dotted) const;
+  void fail_misspelt(const toml::table& table, const std::string& prefix, const std::string& name,
+                     const std::string& what) const;
 
   const toml::table* table_;
   std::string prefix_, file_;
   const Origins* origins_;
   std::set<std::string> read_;
+  // An absent table's parent, and the parent's prefix, where it was looked for.
+  const toml::table* parent_ = nullptr;
+  std::string parent_prefix_;
 };
 
 // Keys that the scene's dimension or shape does not use are errors, not
-// silently ignored: the first of `keys` present fails with `why`.
-void reject_keys(TableReader& t, const std::vector<std::string>& keys, const std::string& why);
+// silently ignored: the first of `keys` present fails with `why` (`with`:
+// the keys that made it unused, as for fail_at).
+void reject_keys(TableReader& t, const std::vector<std::string>& keys, const std::string& why,
+                 const std::vector<std::string>& with = {});
 
 // A required choice among `here`; a value that is valid only in the other
 // dimension (`elsewhere`) gets a message saying so.

@@ -23,6 +23,16 @@ void reject_other_shape_keys(TableReader& t, const std::string& shape);
 void read_source_shape(TableReader& t, const std::string& shape, SandConfig& c,
                        const SceneConfig& s);
 
+// [lo, hi] on `axis` must lie in the box [0, grid.size]: else `key` fails,
+// `with` the other keys (and grid.size) that [lo, hi] came from.
+void check_inside(TableReader& t, const SceneConfig& s, const std::string& key, double lo,
+                  double hi, int axis, std::vector<std::string> with,
+                  const char* what = "the sand region");
+
+// Whether two edges of the polygon `v` that are not neighbours meet (cross
+// or touch): the first two such, by index.
+bool polygon_edges_meet(const std::vector<Vec3d>& v, std::size_t* first, std::size_t* second);
+
 // A polygon's `vertices` (of a [[sand]] or [[obstacle]] block): at least 3
 // finite points [x, y] enclosing a positive area (z is 0).
 std::vector<Vec3d> read_polygon_vertices(TableReader& t);
