@@ -477,7 +477,7 @@ TEST(RenderCli, PlotWritesADecodablePicture) {
   ASSERT_TRUE(d.ok);
   EXPECT_EQ(d.width, 800);
   EXPECT_EQ(d.height, 900);
-  const fs::path out = temp("plot_out.png");
+  const fs::path out = test::temp_path("render_plot_out", ".png");
   ASSERT_EQ(sablier("plot " + dir.string() + " --out " + out.string()).code, 0);
   EXPECT_TRUE(decode_file(out).ok);
   fs::remove(out);
