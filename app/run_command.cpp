@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iterator>
 
@@ -17,6 +18,7 @@
 #include "io/writers.hpp"
 #include "physics/simulation.hpp"
 #include "progress.hpp"
+#include "run_folder.hpp"
 #include "run_record.hpp"
 #include "scene/memory_estimate.hpp"
 #include "scene/scene.hpp"
@@ -47,12 +49,6 @@ namespace fs = std::filesystem;
 volatile std::sig_atomic_t g_interrupted = 0;
 void on_signal(int) { g_interrupted = 1; }
 
-// Files a run writes at the top of its folder: their presence means the
-// folder holds a run's outputs.
-const char* const kRunFiles[] = {"stats.csv",       "obstacles.csv",     "bodies.csv", "series.pvd",
-                                 "grid_series.pvd", "bodies_series.pvd", "scene.toml", "run.json",
-                                 "checkpoint.bin",  "obstacles.obj"};
-
 std::size_t count_bodies(const SceneConfig& scene) {
   std::size_t n = 0;
   for (const ObstacleConfig& o : scene.obstacles) n += o.dynamic() ? 1 : 0;
@@ -67,17 +63,6 @@ bool has_moving_solids(const SceneConfig& scene) {
   for (const ObstacleConfig& o : scene.obstacles)
     if (o.dynamic() || moves_into_sand(o, scene.dimension)) return true;
   return false;
-}
-
-bool holds_run_outputs(const fs::path& dir) {
-  for (const char* f : kRunFiles)
-    if (fs::exists(dir / f)) return true;
-  return fs::exists(dir / "frames");
-}
-
-void remove_run_outputs(const fs::path& dir) {
-  for (const char* f : kRunFiles) fs::remove(dir / f);
-  fs::remove_all(dir / "frames");
 }
 
 std::string frame_name(int frame, const char* ext) {

@@ -199,10 +199,19 @@ TEST(Cli, RefusesToMixRuns) {
       sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall);
   EXPECT_NE(again.code, 0);
   EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
+  // --overwrite replaces the run's files and keeps the user's own, in the
+  // folder and in frames/.
+  std::ofstream(dir / "notes.txt") << "mine";
+  std::ofstream(dir / "frames/mine.txt") << "mine";
+  std::ofstream(dir / "frames/particles_00009.vtp") << "an earlier run's frame";
   EXPECT_EQ(sablier("run " + scene_file("bed2d.toml") + " --out " + dir.string() + kSmall +
                     " --overwrite")
                 .code,
             0);
+  EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+  EXPECT_TRUE(fs::exists(dir / "frames/mine.txt"));
+  EXPECT_FALSE(fs::exists(dir / "frames/particles_00009.vtp"));
+  EXPECT_TRUE(fs::exists(dir / "frames/particles_00002.vtp"));
 }
 
 // (solver.zone_rows = 100: the sand is swept in several zones, so the solve
