@@ -82,6 +82,18 @@ TEST(Writers, VtpRoundTrip) {
       }
 }
 
+// A frame without grains (a silo drained empty) keeps every point array, so
+// that a ParaView pipeline over the series finds them in each frame.
+TEST(Writers, EmptyVtpKeepsEveryArray) {
+  for (int d : {2, 3}) {
+    const std::string vtp = format_vtp(sample(d, 0));
+    for (const char* name : {"velocity", "volume", "pressure", "phi", "stress", "shear_rate", "id",
+                             "material"})
+      EXPECT_NE(vtp.find(std::string("Name=\"") + name + "\""), std::string::npos) << name;
+    expect_same(parse_vtp(vtp, "empty"), sample(d, 0));
+  }
+}
+
 TEST(Writers, VtpCompressionShrinksRegularData) {
   const ParticleFrame f = sample(3, 3000);
   EXPECT_LT(format_vtp(f, VtkCompression::Zlib).size(), format_vtp(f).size() / 2);

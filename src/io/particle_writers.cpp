@@ -45,7 +45,7 @@ std::string format_vtp(const ParticleFrame& f, VtkCompression compression) {
   field += vtk_field_tag("Float64", "TIME", 1, app.add(std::vector<double>{f.time}));
   field += vtk_field_tag("Int32", "DIMENSION", 1, app.add(std::vector<std::int32_t>{f.dimension}));
   const auto scalar = [&](const char* name, const std::vector<double>& v) {
-    if (v.size() == n && n > 0) point += vtk_array_tag("Float64", name, 1, app.add(v));
+    if (v.size() == n) point += vtk_array_tag("Float64", name, 1, app.add(v));
   };
   point += vtk_array_tag("Float64", "velocity", 3,
                          app.add_generated<double>(3 * n, As3D{f.velocity, f.dimension}));
