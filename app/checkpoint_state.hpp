@@ -66,8 +66,10 @@ Checkpoint capture_checkpoint(const Simulation<D>& sim) {
 }
 
 // The simulation a checkpoint describes (decode_checkpoint checked the
-// arrays' sizes). The constructor sorts the particles by cell, as the next
-// step would anyway (a stable sort, so the order is the same); no frame is
+// arrays' sizes), its particles as the checkpoint holds them: not sorted,
+// so that the grains that left the box in the last step are still there
+// when the next step's length is chosen, as in the run that was not
+// interrupted (its next step drops them when it sorts). No frame is
 // written before that step, since an interrupt in a frame's last step
 // writes the frame before its checkpoint (run_command.cpp). Throws
 // CheckpointError naming `source` when the checkpoint's grid is not the
@@ -95,7 +97,7 @@ Simulation<D> restore_simulation(const SceneConfig& scene, const Checkpoint& c,
   p.stress = detail::unflatten<SymVec<D>>(c.stress);
   p.phi = c.phi;
   p.shear_rate = c.shear_rate;
-  Simulation<D> sim(scene, std::move(p));
+  Simulation<D> sim(scene, std::move(p), ParticleOrder::AsGiven);
   // One warm-start stress per grid node, and one more per node with obstacles.
   const auto nodes = static_cast<std::uint64_t>(sim.warm_start().size());
   if (c.nodes != nodes)

@@ -97,11 +97,12 @@ TEST(Resume, ContinuesBitForBit) {
 }
 
 // Grains that leave through an opening stay in the arrays until the next
-// step drops them, but a resumed run starts without them: they must not set
-// the next step's length (Simulation::adaptive_dt). In silo2d's first frame
-// the first grains fall out of the orifice faster than any left in the bin;
-// before, the resumed run's second frame took longer steps.
-TEST(Resume, GrainsThatLeftDoNotSetTheStep) {
+// step drops them, and they set that step's length (Simulation::adaptive_dt):
+// in silo2d's first frame the first grains fall out of the orifice faster
+// than any left in the bin. A resumed run keeps them too
+// (restore_simulation); before, it dropped them at once and its second
+// frame took longer steps.
+TEST(Resume, KeepsTheGrainsThatJustLeft) {
   const fs::path a = fresh("silo_a"), b = fresh("silo_b");
   const std::string silo =
       "run " + scene_file("silo2d.toml") + " --set time.frames=2" + " --threads 1 --quiet --out ";

@@ -32,7 +32,7 @@ template <int D>
 Simulation<D>::Simulation(const SceneConfig& scene) : Simulation(scene, seed_particles<D>(scene)) {}
 
 template <int D>
-Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
+Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles, ParticleOrder order)
     : scene_(scene),
       grid_(grid_cells<D>(scene), scene.cell_size()),
       particles_(std::move(particles)),
@@ -58,7 +58,7 @@ Simulation<D>::Simulation(const SceneConfig& scene, Particles<D> particles)
   problem_.inv_mass.assign(nodes, Vec<D>::Zero());
   problem_.stencil = grid_.stencil_offsets();
   init_boundaries();
-  sort_particles();
+  if (order == ParticleOrder::Sort) sort_particles();
 }
 
 // Velocity boundary conditions as projections inside M^{-1} (METHOD.md
@@ -410,7 +410,7 @@ double Simulation<D>::adaptive_dt(double remaining) const {
   // Grains a spout is about to emit move too (emission.hpp), and so do the
   // rigid bodies' surfaces (at most |V| + |omega| r), which must not skip
   // over the grains they meet.
-  double v = std::max(max_speed_in_box(), open_spout_speed(scene_, time_));
+  double v = std::max(max_speed(), open_spout_speed(scene_, time_));
   for (const Obstacle<D>& o : obstacles_)
     if (o.dynamic || moves_into_sand(o))  // a body, or a solid driven through the sand
       v = std::max(v, o.velocity.norm() + o.spin.norm() * bounding_radius(o));
@@ -466,19 +466,6 @@ template <int D>
 double Simulation<D>::max_speed() const {
   double v2 = 0.0;
   for (const Vec<D>& v : particles_.velocity) v2 = std::max(v2, v.squaredNorm());
-  return std::sqrt(v2);
-}
-
-template <int D>
-double Simulation<D>::max_speed_in_box() const {
-  const double h = grid_.h();
-  double v2 = 0.0;
-  for (std::size_t p = 0; p < particles_.size(); ++p) {
-    const Vec<D>& x = particles_.position[p];
-    bool outside = false;  // as sort_particles decides
-    for (int a = 0; a < D; ++a) outside |= !(x[a] >= 0.0 && x[a] <= grid_.cells()[a] * h);
-    if (!outside) v2 = std::max(v2, particles_.velocity[p].squaredNorm());
-  }
   return std::sqrt(v2);
 }
 

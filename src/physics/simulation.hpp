@@ -72,11 +72,18 @@ template <int D>
 Particles<D> seed_particles(const SceneConfig& scene,
                             std::vector<std::size_t>* region_counts = nullptr);
 
+// Whether a Simulation built from given particles sorts them by cell (and
+// drops those outside the box) at once, or leaves that to its first step:
+// a run resumed from a checkpoint must choose its next step's length from
+// the same grains as the run it continues.
+enum class ParticleOrder { Sort, AsGiven };
+
 template <int D>
 class Simulation {
  public:
   explicit Simulation(const SceneConfig& scene);
-  Simulation(const SceneConfig& scene, Particles<D> particles);
+  Simulation(const SceneConfig& scene, Particles<D> particles,
+             ParticleOrder order = ParticleOrder::Sort);
 
   // Advances by dt (s).
   StepInfo step(double dt);
@@ -126,11 +133,6 @@ class Simulation {
   double potential_energy() const;  // -sum rho_p V_p g.x_p (zero at the origin)
   double affine_energy() const;     // APIC: 1/2 sum_p rho_p V_p sum_i N_i |B_p (x_i - x_p)|^2
   double max_speed() const;
-  // The same over the grains inside the box only: those that left through a
-  // free face or an opening stay in the arrays until the next step's sort
-  // drops them, and must not set the next step (a run resumed from a
-  // checkpoint no longer holds them: --resume is bit-identical).
-  double max_speed_in_box() const;
   double grain_mass() const;  // sum rho_p V_p
 
   // Bulk stress phi lambda of row j, Cartesian tensor (compression positive).
