@@ -13,7 +13,7 @@ struct RunOptions {
   std::vector<std::string> formats{"vtp"};
   bool compress = false;  // zlib-compressed VTK files (.vtp, .vti)
   bool grid = false;      // also frames/grid_NNNNN.vti and grid_series.pvd
-  int threads = 0;  // 0 = OpenMP default
+  int threads = 0;        // 0 = OpenMP default
   bool quiet = false;
   bool overwrite = false;
   // `run --resume DIR`: continue the run in DIR from its checkpoint (the

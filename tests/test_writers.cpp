@@ -87,8 +87,8 @@ TEST(Writers, VtpRoundTrip) {
 TEST(Writers, EmptyVtpKeepsEveryArray) {
   for (int d : {2, 3}) {
     const std::string vtp = format_vtp(sample(d, 0));
-    for (const char* name : {"velocity", "volume", "pressure", "phi", "stress", "shear_rate", "id",
-                             "material"})
+    for (const char* name :
+         {"velocity", "volume", "pressure", "phi", "stress", "shear_rate", "id", "material"})
       EXPECT_NE(vtp.find(std::string("Name=\"") + name + "\""), std::string::npos) << name;
     expect_same(parse_vtp(vtp, "empty"), sample(d, 0));
   }
