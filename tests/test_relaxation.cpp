@@ -119,55 +119,54 @@ TEST(Relaxation, RelaxedStressStaysInTheCone) {
 // pile2d (the shipped scene) without relaxation: its solve of step 264 at
 // 0.65 s cycled to the 2,000-sweep cap, one row next to the floor flipping
 // between stick and slide every 1 to 8 sweeps (measured 2026-12-06, residual
-// 1e-4 to 2e-3 from sweep 30 on, docs/benchmarks.md). From the state before
-// the first such step, the same step solved again without relaxation cycles
-// to the cap as before (the rebuilt state is faithful), and with it reaches
-// the tolerance, its stresses in their cones.
+// 1e-4 to 2e-3 from sweep 30 on, docs/benchmarks.md). Each step of its first
+// 2 s that stops at the cap without relaxation is solved again from the
+// state before it: without relaxation it caps as before (the rebuilt state
+// is faithful); the relaxation must end at least one of them, reaching the
+// tolerance with its stresses in their cones. (Not every capped step is
+// such a cycle: the wanders of docs/method.md are not ended by it. Which
+// steps cap moves with any change of the chaotic pour's trajectory: until
+// the thirty-ninth session the test ran the grains' moves, since the
+// projection capped none in 1.2 s; since then the moves' capped steps are
+// wanders, and the projection's step at 0.77 s is a cycle the relaxation
+// ends in 91 sweeps.)
 TEST(Relaxation, EndsPile2DStickSlideCycle) {
-  // The grains' moves, the rule under which the cycle was recorded (the
-  // projection's pile2d caps no step in its first 1.2 s).
-  const SceneConfig plain =
-      test::scene("pile2d.toml", {"solver.relaxation=1", "solver.decompaction=\"move\""});
-  const SceneConfig relaxed = test::scene("pile2d.toml", {"solver.decompaction=\"move\""});
+  const SceneConfig plain = test::scene("pile2d.toml", {"solver.relaxation=1"});
+  const SceneConfig relaxed = test::scene("pile2d.toml", {});
   ASSERT_EQ(relaxed.solver.relaxation, 0.5);
   Simulation<2> sim(plain);
-  Particles<2> before = sim.particles();
-  std::vector<SymVec<2>> warm = sim.warm_start();
-  std::vector<std::uint8_t> cases = sim.warm_cases();
-  double t = sim.time(), dt = 0.0;
-  std::int64_t steps = 0;
-  StepInfo capped;
-  while (sim.time() < 1.2) {
-    before = sim.particles();
-    warm = sim.warm_start();
-    cases = sim.warm_cases();
-    t = sim.time();
-    steps = sim.steps();
+  int capped_steps = 0;
+  bool ended = false;
+  while (sim.time() < 2.0 && !ended) {
+    const Particles<2> before = sim.particles();
+    const std::vector<SymVec<2>> warm = sim.warm_start();
+    const std::vector<std::uint8_t> cases = sim.warm_cases();
+    const double t = sim.time();
+    const std::int64_t steps = sim.steps();
     const double frame_end = std::floor(sim.time() * 30 + 1 + 1e-9) / 30;
-    dt = sim.adaptive_dt(frame_end - sim.time());
-    capped = sim.step(dt);
-    if (capped.solve.hit_cap) break;
+    const double dt = sim.adaptive_dt(frame_end - sim.time());
+    const StepInfo capped = sim.step(dt);
+    if (!capped.solve.hit_cap) continue;
+    ++capped_steps;
+    auto again = [&](const SceneConfig& s) {
+      Simulation<2> r(s, before);
+      r.restore_clock(t, steps, warm, cases);
+      const StepInfo info = r.step(dt);
+      test::expect_stresses_in_cones(r.problem(), "pile2d again");
+      return info.solve;
+    };
+    const SolveReport same = again(plain), fixed = again(relaxed);
+    std::cout << "pile2d without relaxation: step " << sim.steps() << " at " << t
+              << " s hit the cap (residual " << capped.solve.residual << "); again: residual "
+              << same.residual << "; with relaxation 0.5: " << fixed.iterations
+              << " sweeps, residual " << fixed.residual << "\n";
+    EXPECT_TRUE(same.hit_cap);
+    EXPECT_EQ(same.iterations, capped.solve.iterations);
+    EXPECT_EQ(same.residual, capped.solve.residual);
+    ended = !fixed.hit_cap && fixed.residual <= relaxed.solver.tolerance;
   }
-  ASSERT_TRUE(capped.solve.hit_cap) << "no step of pile2d's first 1.2 s hit the cap";
-  std::cout << "pile2d without relaxation: step " << sim.steps() << " at " << t
-            << " s hit the cap (" << capped.solve.iterations << " sweeps, residual "
-            << capped.solve.residual << ")\n";
-  auto again = [&](const SceneConfig& s) {
-    Simulation<2> r(s, before);
-    r.restore_clock(t, steps, warm, cases);
-    const StepInfo info = r.step(dt);
-    test::expect_stresses_in_cones(r.problem(), "pile2d again");
-    return info.solve;
-  };
-  const SolveReport same = again(plain), fixed = again(relaxed);
-  std::cout << "again without relaxation: " << same.iterations << " sweeps, residual "
-            << same.residual << "; with relaxation 0.5: " << fixed.iterations
-            << " sweeps, residual " << fixed.residual << "\n";
-  EXPECT_TRUE(same.hit_cap);
-  EXPECT_EQ(same.iterations, capped.solve.iterations);
-  EXPECT_EQ(same.residual, capped.solve.residual);
-  EXPECT_FALSE(fixed.hit_cap);
-  EXPECT_LE(fixed.residual, relaxed.solver.tolerance);
+  EXPECT_GT(capped_steps, 0) << "no step of pile2d's first 2 s hit the cap";
+  EXPECT_TRUE(ended) << "the relaxation ended none of the " << capped_steps << " capped solves";
 }
 
 }  // namespace

@@ -491,12 +491,20 @@ void Simulation<D>::transfer_to_particles(double dt) {
     const Material& mp = mats[particles_.material[p]];
     const bool decays = mp.cohesion_decay > 0.0;
     double phi = 0.0, left_out = 0.0, yielding = 0.0;  // yielding: only where cohesion decays
+    bool empty_corner = false;  // some corner's node is nearly empty (kEmptyNodePhi)
+    Vec<D> empty_grad = Vec<D>::Zero();
+    Mat<D> empty_term = Mat<D>::Zero();
     for (int a = 0; a < NC; ++a) {
       const std::int64_t node = base + corner[a];
       const Vec<D>& ui = P.velocity[node];
       u += s.w[a] * ui;
       grad.noalias() += ui * s.grad[a].transpose();
       const int row = row_of_node_[node];
+      if (node_grain_volume_[node] < kEmptyNodePhi * P.volume[row]) {
+        empty_corner = true;
+        empty_grad += s.grad[a];
+        empty_term.noalias() += ui * s.grad[a].transpose();
+      }
       if (row_in_solid_[row]) {
         left_out += s.w[a];
       } else {
@@ -511,6 +519,10 @@ void Simulation<D>::transfer_to_particles(double dt) {
       lambda /= 1.0 - left_out;
       yielding /= 1.0 - left_out;
     }
+    // A nearly empty node's velocity is no motion of sand: such nodes take the
+    // grain's own velocity (the grad N_a sum to zero, so a velocity shared by
+    // all corners adds nothing; docs/validation.md, "Shear rate of sand at rest").
+    if (empty_corner) grad += u * empty_grad.transpose() - empty_term;
     if (!u.allFinite()) bad = std::min(bad, p);
     particles_.velocity[p] = u;
     particles_.affine[p] = grad;
