@@ -21,11 +21,11 @@ namespace sablier {
 // Bytes per cell and per grain, fitted to the largest resident size of
 // `sablier run` (one frame, one thread, g++ 12 Release; 2026-12-07): 2D
 // collapse at 400 x 100 and 800 x 200 cells with 72,000 and 288,000 grains
-// (93, 301 and 352 MB), 3D collapse at 80 x 8 x 20 and 160 x 16 x 40 cells
-// with 20,480 to 163,840 grains (110-355 MB). A grain costs far more than
+// (95, 308 and 360 MB), 3D collapse at 80 x 8 x 20 and 160 x 16 x 40 cells
+// with 20,480 to 552,960 grains (113-870 MB). A grain costs far more than
 // its own arrays (about 240 bytes in 3D): sorting keeps a second copy, and a
 // frame's files and the checkpoint are encoded in memory before they are
-// written. The fit is within 10% of the five runs.
+// written. The fit overestimates each of those eight runs by 2-11%.
 inline double run_memory_bytes(int dimension, double cells, double grains) {
   const double per_cell = dimension == 2 ? 450.0 : 1450.0;
   const double per_grain = dimension == 2 ? 1000.0 : 1350.0;
