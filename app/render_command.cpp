@@ -267,6 +267,15 @@ int plot_command(const PlotCommandOptions& o) {
     if (!fs::exists(csv))
       throw BadInput("no " + csv.string() + " (is " + o.dir + " a run's folder?)");
     stats = parse_stats_series(read_file(csv.string()), csv.string());
+    // The dimension from the run's resolved scene, "dimension = D" on a line
+    // of its own (scene_write.cpp); without it the energy panel says J.
+    const fs::path scene = fs::path(o.dir) / "scene.toml";
+    if (fs::exists(scene)) {
+      const std::string text = read_file(scene.string());
+      for (int d : {2, 3})
+        if (text.find("\ndimension = " + std::to_string(d) + "\n") != std::string::npos)
+          stats.dimension = d;
+    }
     if (stats.time.empty()) throw BadInput(csv.string() + " has no steps yet");
     if (o.width < 200 || o.width > 8192 || o.height < 200 || o.height > 8192)
       throw BadInput("--width and --height must be 200 to 8192 pixels");

@@ -2,6 +2,7 @@
 // it draws. The command itself is tested in test_render.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "io/image.hpp"
@@ -39,6 +40,31 @@ TEST(Plot, ShowsTheOverfillWhenTheColumnIsThere) {
   };
   EXPECT_EQ(frames(plot_stats(a)), 5);
   EXPECT_EQ(frames(plot_stats(b)), 4);
+}
+
+// In 2D the energies are per metre of depth, and the energy panel's title
+// says so: the 2D picture differs from the 3D one in that title's row only
+// (above the first panel), which is longer.
+TEST(Plot, TwoDEnergiesArePerMetre) {
+  StatsSeries s = parse_stats_series(
+      "step,time,kinetic_energy,potential_energy,iterations,residual,wall_seconds\n"
+      "1,0.1,1,2,10,1e-6,0.01\n2,0.2,0.5,1.5,12,2e-6,0.02\n",
+      "s.csv");
+  s.dimension = 3;
+  const Canvas three = plot_stats(s);
+  s.dimension = 2;
+  const Canvas two = plot_stats(s);
+  int first = -1, last = -1, right = -1;
+  for (int y = 0; y < two.height(); ++y)
+    for (int x = 0; x < two.width(); ++x)
+      if (!(two.at(x, y) == three.at(x, y))) {
+        if (first < 0) first = y;
+        last = y;
+        right = std::max(right, x);
+      }
+  ASSERT_GE(first, 0) << "the same picture";
+  EXPECT_LT(last, 30);                          // the title row, above the first panel's frame
+  EXPECT_GT(right, text_width("energy J", 2));  // a longer title
 }
 
 }  // namespace

@@ -223,7 +223,7 @@ Canvas plot_stats(const StatsSeries& st, int width, int height) {
   std::vector<double> percent(st.overfill.size());
   for (std::size_t k = 0; k < percent.size(); ++k) percent[k] = 100.0 * st.overfill[k];
   std::vector<Panel> panels = {
-      {"energy J",
+      {st.dimension == 2 ? "energy J/m" : "energy J",
        {{&total, kBlue, "kinetic+potential"}, {&st.kinetic_energy, kOrange, "kinetic"}}},
       {"solver iterations per step", {{&st.iterations, kBlue, ""}}},
       {"residual", {{&st.residual, kBlue, ""}}, true},

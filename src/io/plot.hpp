@@ -14,6 +14,9 @@ struct StatsSeries {
   // The grains' volume beyond phi_max, a fraction; empty for a file of a
   // build before the column.
   std::vector<double> overfill;
+  // The scene's dimension when known (the run's scene.toml), else 0: 2D
+  // energies are per metre of depth, and the energy panel says so.
+  int dimension = 0;
 };
 
 // Reads stats.csv text, finding the columns by their header names (extra
