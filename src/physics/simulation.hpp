@@ -222,7 +222,7 @@ class Simulation {
   }
   // A grain inside a solid put back just outside it, the box's walls
   // permitting, on the side of `from` (where it came from) when given
-  // (transfer.cpp).
+  // (solid_exit.cpp).
   // Returns true, and the surface's outward normal in `held`, when it holds
   // the grain on the side of a thin part it came from. `clearance`, when
   // given, receives a lower bound on x's distance to the solids when the

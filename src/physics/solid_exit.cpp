@@ -1,5 +1,5 @@
 // Grains put back out of solids (docs/method.md, "Frictional obstacles",
-// "Volume"): after advection (transfer.cpp) and the decompaction's moves
+// "Volume"): after advection (grid_to_particles.cpp) and the decompaction's moves
 // (decompaction.cpp), a grain inside a solid goes back outside it, the
 // box's walls permitting and on the side it came from.
 #include <algorithm>
