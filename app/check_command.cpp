@@ -45,13 +45,12 @@ void print_sources(const SceneConfig& s, const std::vector<std::size_t>& counts)
     const SpoutConfig& sp = s.spouts[k];
     const double spacing = spout_spacing(s, sp);
     const std::size_t layer = spout_layer_size(s.dimension, sp.radius, spacing);
-    const std::int64_t layers = spout_layers(sp, spacing, end);
     std::printf(
         "  spout[%zu] rate %.6g %s (rho phi_max |v| A; %.6g as emitted, %zu particles "
         "per layer), from t = %g s to %s: %lld particles by the end\n",
         k, spout_nominal_rate(s, sp), unit, spout_lattice_rate(s, sp), layer, sp.start,
         std::isfinite(sp.stop) ? fmt::format("{} s", sp.stop).c_str() : "the end",
-        static_cast<long long>(layers * static_cast<std::int64_t>(layer)));
+        static_cast<long long>(spout_particles(s, sp, end)));
   }
 }
 

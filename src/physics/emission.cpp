@@ -145,6 +145,12 @@ std::int64_t spout_layers(const SpoutConfig& spout, double spacing, double t) {
   return layers < 0x1.0p62 ? static_cast<std::int64_t>(layers) : std::int64_t(1) << 62;
 }
 
+std::int64_t spout_particles(const SceneConfig& scene, const SpoutConfig& spout, double t) {
+  const double spacing = spout_spacing(scene, spout);
+  return spout_layers(spout, spacing, t) *
+         static_cast<std::int64_t>(spout_layer_size(scene.dimension, spout.radius, spacing));
+}
+
 double spout_nominal_rate(const SceneConfig& scene, const SpoutConfig& spout) {
   const double area = scene.dimension == 2 ? 2.0 * spout.radius : kPi * spout.radius * spout.radius;
   return scene.material.density * scene.material.phi_max * speed(spout) * area;

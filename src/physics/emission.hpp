@@ -37,6 +37,8 @@ std::size_t spout_layer_size(int dimension, double radius, double spacing);
 
 // Layers emitted by time t (0 before start).
 std::int64_t spout_layers(const SpoutConfig& spout, double spacing, double t);
+// Particles emitted by time t: the layers times the layer's points.
+std::int64_t spout_particles(const SceneConfig& scene, const SpoutConfig& spout, double t);
 
 // Mass rates: nominal rho phi_max |v| A (A = 2 radius in 2D, per metre of
 // depth, kg/(m s); pi radius^2 in 3D, kg/s), and that of the lattice

@@ -92,11 +92,7 @@ inline double block_grains(const SceneConfig& s, const SandConfig& b) {
 inline std::size_t grains_by_end(const SceneConfig& s, std::size_t seeded) {
   const double end = s.time.frames / s.time.fps;
   std::size_t n = seeded;
-  for (const SpoutConfig& sp : s.spouts) {
-    const double spacing = spout_spacing(s, sp);
-    n += std::size_t(spout_layers(sp, spacing, end)) *
-         spout_layer_size(s.dimension, sp.radius, spacing);
-  }
+  for (const SpoutConfig& sp : s.spouts) n += std::size_t(spout_particles(s, sp, end));
   return n;
 }
 
