@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cone_problem_file.hpp"
 #include "physics/simulation.hpp"
 #include "solver/relaxation.hpp"
 #include "test_support.hpp"
@@ -116,57 +117,67 @@ TEST(Relaxation, RelaxedStressStaysInTheCone) {
   EXPECT_LE(out.tail(2).norm(), 0.5 * (out[0] + 100.0) * (1 + 1e-12));
 }
 
-// pile2d (the shipped scene) without relaxation: its solve of step 264 at
-// 0.65 s cycled to the 2,000-sweep cap, one row next to the floor flipping
-// between stick and slide every 1 to 8 sweeps (measured 2026-12-06, residual
-// 1e-4 to 2e-3 from sweep 30 on, docs/benchmarks.md). Each step of its first
-// 2 s that stops at the cap without relaxation is solved again from the
-// state before it: without relaxation it caps as before (the rebuilt state
-// is faithful); the relaxation must end at least one of them, reaching the
-// tolerance with its stresses in their cones. (Not every capped step is
-// such a cycle: the wanders of docs/method.md are not ended by it. Which
-// steps cap moves with any change of the chaotic pour's trajectory: until
-// the thirty-ninth session the test ran the grains' moves, since the
-// projection capped none in 1.2 s; since then the relaxation ends none of
-// the moves' capped steps, and ends the projection's at 0.77 s, capped at a
-// residual of 1.4e-5, in 91 sweeps.)
+// A solve that cycles between stick and slide, recorded: pile2d (the shipped
+// scene) with seed 2 and the relaxation off, its step 259 at 0.636 s (485
+// rows), as the solver received it (recorded 2026-12-07 by
+// DISABLED_RecordPile2DCycle below, with the build of that day). Solved
+// without relaxation, one row next to the middle of the stick floor, its
+// block nearly singular (Schur complement 5.4% of w_NN), is still flipping
+// between stick and slide at the cap, as in the first such cycle measured
+// (2026-12-06, docs/benchmarks.md, twenty-seventh section). Until the
+// fortieth session the test replayed the pour itself, and hung on a chaotic
+// trajectory: any change of the engine moved which steps cap.
+const std::string kCycleFile = SABLIER_SOURCE_DIR "/tests/data/pile2d_cycle.bin";
+
+// Without relaxation the recorded solve stops at the cap; with the
+// shipped relaxation (0.5) it reaches the tolerance, its stresses in their
+// cones, in a fraction of the cap (68 sweeps when recorded).
 TEST(Relaxation, EndsPile2DStickSlideCycle) {
-  const SceneConfig plain = test::scene("pile2d.toml", {"solver.relaxation=1"});
-  const SceneConfig relaxed = test::scene("pile2d.toml", {});
-  ASSERT_EQ(relaxed.solver.relaxation, 0.5);
+  const SceneConfig scene = test::scene("pile2d.toml");
+  ASSERT_EQ(scene.solver.relaxation, 0.5);
+  const ConeProblem<2> recorded = test::load_cone_problem<2>(kCycleFile);
+  ASSERT_EQ(recorded.rows(), 485);
+  auto solve = [&](double relaxation) {
+    ConeProblem<2> p = recorded;
+    p.relaxation = relaxation;
+    const SolveReport r = solve_gauss_seidel(p, scene.solver.tolerance, scene.solver.max_iterations,
+                                             scene.solver.anderson);
+    test::expect_stresses_in_cones(p, "pile2d's recorded step");
+    std::cout << "relaxation " << relaxation << ": " << r.iterations << " sweeps, residual "
+              << r.residual << "\n";
+    return r;
+  };
+  const SolveReport plain = solve(1.0), relaxed = solve(scene.solver.relaxation);
+  EXPECT_TRUE(plain.hit_cap);
+  EXPECT_EQ(plain.iterations, scene.solver.max_iterations);
+  EXPECT_FALSE(relaxed.hit_cap);
+  EXPECT_LE(relaxed.residual, scene.solver.tolerance);
+  EXPECT_LT(relaxed.iterations, scene.solver.max_iterations / 4);
+}
+
+// Records kCycleFile again (run it alone, with
+// --gtest_also_run_disabled_tests): pile2d with seed 2 and the relaxation
+// off, up to its first step that stops at the cap without relaxation and
+// reaches the tolerance with it.
+TEST(Relaxation, DISABLED_RecordPile2DCycle) {
+  const SceneConfig plain = test::scene("pile2d.toml", {"solver.relaxation=1", "seed=2"});
   Simulation<2> sim(plain);
-  int capped_steps = 0;
-  bool ended = false;
-  while (sim.time() < 2.0 && !ended) {
-    const Particles<2> before = sim.particles();
-    const std::vector<SymVec<2>> warm = sim.warm_start();
-    const std::vector<std::uint8_t> cases = sim.warm_cases();
-    const double t = sim.time();
-    const std::int64_t steps = sim.steps();
+  ConeProblem<2> before;
+  sim.before_solve = [&](const ConeProblem<2>& p) { before = p; };
+  while (sim.time() < 2.0) {
     const double frame_end = std::floor(sim.time() * 30 + 1 + 1e-9) / 30;
-    const double dt = sim.adaptive_dt(frame_end - sim.time());
-    const StepInfo capped = sim.step(dt);
-    if (!capped.solve.hit_cap) continue;
-    ++capped_steps;
-    auto again = [&](const SceneConfig& s) {
-      Simulation<2> r(s, before);
-      r.restore_clock(t, steps, warm, cases);
-      const StepInfo info = r.step(dt);
-      test::expect_stresses_in_cones(r.problem(), "pile2d again");
-      return info.solve;
-    };
-    const SolveReport same = again(plain), fixed = again(relaxed);
-    std::cout << "pile2d without relaxation: step " << sim.steps() << " at " << t
-              << " s hit the cap (residual " << capped.solve.residual << "); again: residual "
-              << same.residual << "; with relaxation 0.5: " << fixed.iterations
-              << " sweeps, residual " << fixed.residual << "\n";
-    EXPECT_TRUE(same.hit_cap);
-    EXPECT_EQ(same.iterations, capped.solve.iterations);
-    EXPECT_EQ(same.residual, capped.solve.residual);
-    ended = !fixed.hit_cap && fixed.residual <= relaxed.solver.tolerance;
+    if (!sim.step(sim.adaptive_dt(frame_end - sim.time())).solve.hit_cap) continue;
+    ConeProblem<2> p = before;
+    p.relaxation = 0.5;
+    const SolveReport r = solve_gauss_seidel(p, plain.solver.tolerance, plain.solver.max_iterations,
+                                             plain.solver.anderson);
+    if (r.hit_cap) continue;
+    test::save_cone_problem(before, kCycleFile);
+    std::cout << "recorded step " << sim.steps() << " (" << before.rows()
+              << " rows): " << r.iterations << " sweeps relaxed\n";
+    return;
   }
-  EXPECT_GT(capped_steps, 0) << "no step of pile2d's first 2 s hit the cap";
-  EXPECT_TRUE(ended) << "the relaxation ended none of the " << capped_steps << " capped solves";
+  FAIL() << "no capped step of pile2d's first 2 s that the relaxation ends";
 }
 
 }  // namespace

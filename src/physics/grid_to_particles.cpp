@@ -69,15 +69,18 @@ void Simulation<D>::transfer_to_particles(double dt) {
       lambda /= 1.0 - left_out;
       yielding /= 1.0 - left_out;
     }
-    // A nearly empty node's velocity is no motion of sand: such nodes take the
-    // grain's own velocity (the grad N_a sum to zero, so a velocity shared by
-    // all corners adds nothing; docs/validation.md, "Shear rate of sand at rest").
-    if (empty_corner) grad += u * empty_grad.transpose() - empty_term;
     if (!u.allFinite()) bad = std::min(bad, p);
     particles_.velocity[p] = u;
-    particles_.affine[p] = grad;
+    particles_.affine[p] = grad;  // APIC's B_p = grad u(x_p) (METHOD.md step 7)
     particles_.stress[p] = lambda;
     particles_.phi[p] = phi;
+    // The sand's own velocity gradient, for its rheology: a nearly empty
+    // node's velocity is no motion of sand, so such nodes take the grain's
+    // own velocity (the grad N_a sum to zero, so a velocity shared by all
+    // corners adds nothing; docs/validation.md, "Shear rate of sand at rest").
+    // The affine matrix keeps every node: leaving them out of it too made
+    // the draining scenes' solves harder (docs/benchmarks.md, fortieth).
+    if (empty_corner) grad += u * empty_grad.transpose() - empty_term;
     // Equivalent shear rate: 2 |Dev D| in the paper's norm (the simple-shear
     // rate for simple shear), used by mu(I) and by the cohesion decay.
     const double shear = 2.0 * deviatoric_norm<D>(to_sym<D>(grad));

@@ -331,6 +331,7 @@ StepInfo Simulation<D>::step(double dt) {
 
   t0 = Clock::now();
   problem_.relaxation = scene_.solver.relaxation;
+  if (before_solve) before_solve(problem_);
   info.solve = solve_gauss_seidel(problem_, scene_.solver.tolerance, scene_.solver.max_iterations,
                                   scene_.solver.anderson);
   info.timings.solve = seconds_since(t0);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -65,10 +66,12 @@ constexpr double kOverfullRelaxation = 0.1;
 // convex corner a quarter full.
 constexpr double kCohesiveFill = 0.4;
 // A node whose grain volume is below this fraction of its volume is nearly
-// empty: its velocity is no motion of sand, and the grains' velocity
-// gradient takes their own velocity there (transfer_to_particles). One
-// grain of a 2D cell at 5 per axis is 0.024 of it at phi_max 0.6.
-constexpr double kEmptyNodePhi = 1e-3;
+// empty: its velocity is no motion of sand, and the grains' shear rate
+// takes their own velocity there (transfer_to_particles; their affine
+// matrix does not). One grain of a 2D cell at 5 per axis is 0.024 of it at
+// phi_max 0.6, of a 3D cell at 3 per axis 0.022: this is under half of
+// that (docs/validation.md, "Shear rate of sand at rest").
+constexpr double kEmptyNodePhi = 1e-2;
 
 // Particles created from the scene's [[sand]] regions (METHOD.md step 1:
 // n particles per cell and per axis, V_p = phi_max h^d / n^d).
@@ -166,6 +169,11 @@ class Simulation {
     else
       warm_case_.assign(warm_lambda_.size(), 0);
   }
+
+  // For tests and diagnostics: when set, called once per step with the
+  // step's assembled cone problem, just before it is solved (a test records
+  // a problem the solver finds hard and solves it again under variants).
+  std::function<void(const ConeProblem<D>&)> before_solve;
 
  private:
   void init_boundaries();
