@@ -44,11 +44,17 @@ TEST(SceneFile, UnknownKeysListTheKeysTheirBlockTakes) {
       {kBase3D + box3d, "obstacle.0.axsi=[0,0,1]", "axis"},
       {kSpout2D, "spout.0.stopp=1", "stop"},
       {kBase2D, "material.mu_j=1", "mu_i"},
+      {kBase2D, "time.fr=1", "frames"},  // the only key it begins
+      {kBase2D, "solver.tol=1", "tolerance"},
   };
   for (const auto& c : misspelt)
     EXPECT_NE(error_of(c.scene, {c.set}).find("did you mean \"" + c.guess + "\"?"),
               std::string::npos)
         << c.set << " -> " << error_of(c.scene, {c.set});
+  // A one-letter key is no misspelling of a longer one ("f" was taken for
+  // "cfl"): the keys are listed.
+  EXPECT_EQ(allowed(error_of(kBase2D, {"time.f=1"})), "allowed here: cfl, fps, frames, substeps");
+  EXPECT_EQ(error_of(kBase2D, {"material.m=1"}).find("did you mean"), std::string::npos);
 }
 
 // A check across keys blames a line of the file; the keys it read that

@@ -21,7 +21,8 @@ namespace sablier {
 // Where a node came from: "file:line", or `fallback` when it has no line.
 std::string where(const toml::source_region& src, const std::string& fallback);
 
-// Closest candidate by edit distance (empty if none is close).
+// The candidate the key most likely misspells: the only one it begins, or
+// the closest by edit distance (empty if none is close).
 std::string closest_key(const std::string& key, const std::vector<std::string>& candidates);
 
 // "\"a\", \"b\", \"c\""
