@@ -125,7 +125,7 @@ TEST(Relaxation, RelaxedStressStaysInTheCone) {
 // block nearly singular (Schur complement 5.4% of w_NN), is still flipping
 // between stick and slide at the cap, as in the first such cycle measured
 // (2026-12-06, docs/benchmarks.md, twenty-seventh section). Until the
-// fortieth session the test replayed the pour itself, and hung on a chaotic
+// fortieth session the test replayed the pour itself, and rested on a chaotic
 // trajectory: any change of the engine moved which steps cap.
 const std::string kCycleFile = SABLIER_SOURCE_DIR "/tests/data/pile2d_cycle.bin";
 

@@ -222,6 +222,16 @@ TEST(SceneFile, OverridesApply) {
   EXPECT_EQ(s.time.frames, 4);  // the last override wins
   ASSERT_TRUE(s.material.mu_i.has_value());
   EXPECT_EQ(s.material.mu_i->I0, 0.2);
+  // A whole list of blocks replaces the file's blocks of that kind, or adds
+  // them where the file has none (docs/scenes.md, "Overrides").
+  const SceneConfig l =
+      parse_scene(kBase2D, "good.toml",
+                  {"sand=[{shape=\"box\", min=[0.6, 0], max=[0.7, 0.1]}]",
+                   "obstacle=[{shape=\"disk\", center=[0.3, 0.1], radius=0.05}]"});
+  ASSERT_EQ(l.sand.size(), 1u);
+  EXPECT_EQ(l.sand[0].min[0], 0.6);
+  ASSERT_EQ(l.obstacles.size(), 1u);
+  EXPECT_EQ(l.obstacles[0].radius, 0.05);
 }
 
 TEST(SceneFile, BadOverrides) {
