@@ -41,20 +41,14 @@ void Simulation<D>::transfer_to_particles(double dt) {
     const Material& mp = mats[particles_.material[p]];
     const bool decays = mp.cohesion_decay > 0.0;
     double phi = 0.0, left_out = 0.0, yielding = 0.0;  // yielding: only where cohesion decays
-    bool empty_corner = false;  // some corner's node is nearly empty (kEmptyNodePhi)
-    Vec<D> empty_grad = Vec<D>::Zero();
-    Mat<D> empty_term = Mat<D>::Zero();
+    unsigned empty_corners = 0;  // corners whose node is nearly empty (kEmptyNodePhi)
     for (int a = 0; a < NC; ++a) {
       const std::int64_t node = base + corner[a];
       const Vec<D>& ui = P.velocity[node];
       u += s.w[a] * ui;
       grad.noalias() += ui * s.grad[a].transpose();
       const int row = row_of_node_[node];
-      if (node_grain_volume_[node] < kEmptyNodePhi * P.volume[row]) {
-        empty_corner = true;
-        empty_grad += s.grad[a];
-        empty_term.noalias() += ui * s.grad[a].transpose();
-      }
+      if (node_grain_volume_[node] < kEmptyNodePhi * P.volume[row]) empty_corners |= 1u << a;
       if (row_in_solid_[row]) {
         left_out += s.w[a];
       } else {
@@ -80,7 +74,18 @@ void Simulation<D>::transfer_to_particles(double dt) {
     // corners adds nothing; docs/validation.md, "Shear rate of sand at rest").
     // The affine matrix keeps every node: leaving them out of it too made
     // the draining scenes' solves harder (docs/benchmarks.md, fortieth).
-    if (empty_corner) grad += u * empty_grad.transpose() - empty_term;
+    // (A pass of its own: products shared with the loop above would change
+    // how the compiler rounds the affine matrix.)
+    if (empty_corners) {
+      Vec<D> empty_grad = Vec<D>::Zero();
+      Mat<D> empty_term = Mat<D>::Zero();
+      for (int a = 0; a < NC; ++a) {
+        if (!(empty_corners >> a & 1u)) continue;
+        empty_grad += s.grad[a];
+        empty_term.noalias() += P.velocity[base + corner[a]] * s.grad[a].transpose();
+      }
+      grad += u * empty_grad.transpose() - empty_term;
+    }
     // Equivalent shear rate: 2 |Dev D| in the paper's norm (the simple-shear
     // rate for simple shear), used by mu(I) and by the cohesion decay.
     const double shear = 2.0 * deviatoric_norm<D>(to_sym<D>(grad));
