@@ -1,6 +1,7 @@
 // `sablier render` (PNG pictures of a run's frames, optionally a GIF or MP4)
 // and `sablier plot` (a PNG of the run's stats.csv).
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cctype>
@@ -8,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "commands.hpp"
@@ -267,14 +269,16 @@ int plot_command(const PlotCommandOptions& o) {
     if (!fs::exists(csv))
       throw BadInput("no " + csv.string() + " (is " + o.dir + " a run's folder?)");
     stats = parse_stats_series(read_file(csv.string()), csv.string());
-    // The dimension from the run's resolved scene, "dimension = D" on a line
-    // of its own (scene_write.cpp); without it the energy panel says J.
+    // The dimension from the run's resolved scene; without it (no scene.toml,
+    // or one that is not TOML) the energy panel says J.
     const fs::path scene = fs::path(o.dir) / "scene.toml";
     if (fs::exists(scene)) {
-      const std::string text = read_file(scene.string());
-      for (int d : {2, 3})
-        if (text.find("\ndimension = " + std::to_string(d) + "\n") != std::string::npos)
-          stats.dimension = d;
+      try {
+        const toml::table t = toml::parse(read_file(scene.string()), scene.string());
+        const std::optional<int> d = t["dimension"].value<int>();
+        if (d && (*d == 2 || *d == 3)) stats.dimension = *d;
+      } catch (const toml::parse_error&) {
+      }
     }
     if (stats.time.empty()) throw BadInput(csv.string() + " has no steps yet");
     if (o.width < 200 || o.width > 8192 || o.height < 200 || o.height > 8192)
