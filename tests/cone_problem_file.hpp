@@ -4,16 +4,16 @@
 // Sand rows only (no obstacle contact rows, no rigid bodies). What
 // assemble_delassus derives (the blocks, inverse volumes, packed couplings)
 // is rebuilt on reading; the velocity unknowns are stored where they or
-// their inverse masses are non-zero. Little-endian (io/bytes.hpp).
+// their inverse masses are non-zero. Little-endian (io/bytes.hpp), written
+// atomically (io/writers.hpp).
 #pragma once
 
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "io/bytes.hpp"
+#include "io/writers.hpp"
 #include "solver/cone_problem.hpp"
 
 namespace sablier::test {
@@ -53,18 +53,12 @@ void save_cone_problem(const ConeProblem<D>& p, const std::string& path) {
     w.put(p.cohesion[j]);
     for (int c = 0; c < sym_size(D); ++c) w.put(p.lambda[j][c]);
   }
-  std::ofstream out(path, std::ios::binary);
-  out.write(w.data().data(), static_cast<std::streamsize>(w.data().size()));
-  if (!out) throw std::runtime_error("cannot write " + path);
+  write_file_atomic(path, w.data());
 }
 
 template <int D>
 ConeProblem<D> load_cone_problem(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  std::ostringstream all;
-  all << in.rdbuf();
-  const std::string data = all.str();
+  const std::string data = read_file(path);
   const std::string magic = kConeProblemMagic;
   if (data.compare(0, magic.size(), magic) != 0)
     throw std::runtime_error(path + ": not a cone problem file");

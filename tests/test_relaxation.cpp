@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cone_problem_file.hpp"
+#include "io/writers.hpp"
 #include "physics/simulation.hpp"
 #include "solver/relaxation.hpp"
 #include "test_support.hpp"
@@ -178,9 +179,8 @@ TEST(Relaxation, RecordedProblemRoundTrips) {
   EXPECT_EQ(a.aperture, b.aperture);
   EXPECT_EQ(a.cohesion, b.cohesion);
   EXPECT_EQ(a.lambda, b.lambda);
-  std::ifstream in(copy, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::ofstream(copy, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() / 2));
+  const std::string bytes = read_file(copy);
+  write_file_atomic(copy, bytes.substr(0, bytes.size() / 2));
   EXPECT_THROW(test::load_cone_problem<2>(copy), std::runtime_error);
   std::remove(copy.c_str());
 }
