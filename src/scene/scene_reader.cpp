@@ -83,11 +83,12 @@ std::string where(const toml::source_region& src, const std::string& fallback) {
 }
 
 std::string closest_key(const std::string& key, const std::vector<std::string>& candidates) {
-  // A key that begins exactly one candidate ("fr" for "frames") is that one.
   std::string best;
+  if (key.empty()) return best;
+  // A key that begins exactly one candidate ("fr" for "frames") is that one.
   int starts = 0;
   for (const std::string& c : candidates)
-    if (!key.empty() && c.size() > key.size() && c.compare(0, key.size(), key) == 0) {
+    if (c.size() > key.size() && c.compare(0, key.size(), key) == 0) {
       best = c;
       ++starts;
     }
@@ -97,7 +98,6 @@ std::string closest_key(const std::string& key, const std::vector<std::string>& 
   // length (2 for short keys), and less than the key's length: a one-letter
   // key is not a misspelling of any two-letter one ("f" is not "cfl").
   std::size_t best_d = std::min(std::max<std::size_t>(2, key.size() / 3), key.size() - 1) + 1;
-  if (key.empty()) return best;
   for (const std::string& c : candidates) {
     std::vector<std::size_t> row(c.size() + 1);
     for (std::size_t j = 0; j <= c.size(); ++j) row[j] = j;
