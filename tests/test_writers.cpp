@@ -192,7 +192,6 @@ TEST(Writers, StatsRoundTrip) {
   s.hit_cap = true;
   s.decompaction_work = 2.0 / 3;
   s.overfill = 1.0 / 9;
-  s.tolerance = 5.4e-6;
   t.add(s);
   const std::string csv = t.csv();
   const auto rows = parse_stats_csv(csv);
@@ -203,23 +202,21 @@ TEST(Writers, StatsRoundTrip) {
   EXPECT_TRUE(rows[0].hit_cap);
   EXPECT_EQ(rows[0].decompaction_work, s.decompaction_work);
   EXPECT_EQ(rows[0].overfill, s.overfill);
-  EXPECT_EQ(rows[0].tolerance, s.tolerance);
-  // Files of builds before tolerance (18 columns), before overfill (17) and
-  // before decompaction_work (16) still read, the missing columns as NaN,
-  // so that such a run can be resumed.
+  // Files of builds before overfill (17 columns) and before
+  // decompaction_work (16) still read, the missing columns as NaN, so that
+  // such a run can be resumed.
   std::string old_header = kStatsHeader, line = csv.substr(csv.find('\n') + 1);
   line.pop_back();  // its newline
   std::string old;
-  for (int dropped = 1; dropped <= 3; ++dropped) {
+  for (int dropped = 1; dropped <= 2; ++dropped) {
     old_header = old_header.substr(0, old_header.rfind(','));
     line = line.substr(0, line.rfind(','));
     old = old_header + "\n" + line + "\n";
     const auto old_rows = parse_stats_csv(old);
     ASSERT_EQ(old_rows.size(), 1u) << dropped;
     EXPECT_EQ(old_rows[0].iterations, 17);
-    EXPECT_TRUE(std::isnan(old_rows[0].tolerance));
-    EXPECT_EQ(std::isnan(old_rows[0].overfill), dropped >= 2);
-    EXPECT_EQ(std::isnan(old_rows[0].decompaction_work), dropped == 3);
+    EXPECT_TRUE(std::isnan(old_rows[0].overfill));
+    EXPECT_EQ(std::isnan(old_rows[0].decompaction_work), dropped == 2);
     EXPECT_EQ(parse_stats_csv_until(old, 3).size(), 1u);
   }
   EXPECT_THROW(parse_stats_csv(old_header + ",extra\n"), IoError);

@@ -14,15 +14,14 @@ namespace sablier {
   "step,time,dt,particles,active_nodes,iterations,residual,kinetic_energy,potential_energy," \
   "max_speed,wall_seconds,hit_cap,transfer_seconds,assembly_seconds,solve_seconds,"          \
   "advection_seconds"
-const char* const kStatsHeader = SABLIER_STATS_COLUMNS ",decompaction_work,overfill,tolerance";
+const char* const kStatsHeader = SABLIER_STATS_COLUMNS ",decompaction_work,overfill";
 
 namespace {
-// The headers before decompaction_work (2026-12-02), before overfill
-// (2026-12-06) and before tolerance (2026-12-07): a run written by an older
-// build resumes, its earlier rows reading NaN in the new columns.
+// The headers before decompaction_work (2026-12-02) and before overfill
+// (2026-12-06): a run written by an older build resumes, its earlier rows
+// reading NaN in the new columns.
 const char* const kStatsHeader16 = SABLIER_STATS_COLUMNS;
 const char* const kStatsHeader17 = SABLIER_STATS_COLUMNS ",decompaction_work";
-const char* const kStatsHeader18 = SABLIER_STATS_COLUMNS ",decompaction_work,overfill";
 }  // namespace
 #undef SABLIER_STATS_COLUMNS
 
@@ -30,12 +29,11 @@ std::string StatsTable::csv() const {
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "{}\n", kStatsHeader);
   for (const StepStats& s : rows_) {
-    fmt::format_to(std::back_inserter(out),
-                   "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.step, s.time,
-                   s.dt, s.particles, s.active_nodes, s.iterations, s.residual, s.kinetic_energy,
-                   s.potential_energy, s.max_speed, s.wall_seconds, s.hit_cap ? 1 : 0,
-                   s.transfer_seconds, s.assembly_seconds, s.solve_seconds, s.advection_seconds,
-                   s.decompaction_work, s.overfill, s.tolerance);
+    fmt::format_to(
+        std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", s.step,
+        s.time, s.dt, s.particles, s.active_nodes, s.iterations, s.residual, s.kinetic_energy,
+        s.potential_energy, s.max_speed, s.wall_seconds, s.hit_cap ? 1 : 0, s.transfer_seconds,
+        s.assembly_seconds, s.solve_seconds, s.advection_seconds, s.decompaction_work, s.overfill);
   }
   return fmt::to_string(out);
 }
@@ -61,7 +59,7 @@ bool parse_numbers(const std::string& line, std::vector<double>& v, std::string*
 }
 
 // One data row; false (with `error` set) if it is not `columns` numbers
-// (19, or 16 to 18 for a file of an older build).
+// (18, or 16 or 17 for a file of an older build).
 bool parse_stats_row(const std::string& line, StepStats& s, std::string& error,
                      std::size_t columns) {
   std::vector<double> v;
@@ -93,7 +91,6 @@ bool parse_stats_row(const std::string& line, StepStats& s, std::string& error,
   const double nan = std::numeric_limits<double>::quiet_NaN();
   s.decompaction_work = columns > 16 ? v[16] : nan;
   s.overfill = columns > 17 ? v[17] : nan;
-  s.tolerance = columns > 18 ? v[18] : nan;
   return true;
 }
 
@@ -101,8 +98,7 @@ bool parse_stats_row(const std::string& line, StepStats& s, std::string& error,
 std::size_t stats_columns(std::istream& in) {
   std::string line;
   if (std::getline(in, line)) {
-    if (line == kStatsHeader) return 19;
-    if (line == kStatsHeader18) return 18;
+    if (line == kStatsHeader) return 18;
     if (line == kStatsHeader17) return 17;
     if (line == kStatsHeader16) return 16;
   }

@@ -24,10 +24,6 @@ struct StepStats {
   // it (StepInfo::overfill); NaN in the rows of a file written before the
   // column existed.
   double overfill = 0.0;
-  // The tolerance the step's solve ran to (StepInfo::tolerance: the
-  // scene's, less on long steps); NaN in the rows of a file written before
-  // the column existed.
-  double tolerance = 0.0;
 };
 
 class StatsTable {
