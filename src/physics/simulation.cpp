@@ -332,8 +332,7 @@ StepInfo Simulation<D>::step(double dt) {
   t0 = Clock::now();
   problem_.relaxation = scene_.solver.relaxation;
   if (before_solve) before_solve(problem_);
-  info.tolerance = solve_tolerance(scene_.solver.tolerance, dt, grid_.h(), gravity_.norm());
-  info.solve = solve_gauss_seidel(problem_, info.tolerance, scene_.solver.max_iterations,
+  info.solve = solve_gauss_seidel(problem_, scene_.solver.tolerance, scene_.solver.max_iterations,
                                   scene_.solver.anderson);
   info.timings.solve = seconds_since(t0);
   // Work the decompaction of over-full nodes may do: 2 dt sum max(0,

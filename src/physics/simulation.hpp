@@ -1,8 +1,6 @@
 // One simulation: particles, grid, and the time step of METHOD.md section 2.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
@@ -33,7 +31,6 @@ struct StepTimings {
 
 struct StepInfo {
   double dt = 0.0;
-  double tolerance = 0.0;  // the solve's tolerance: the scene's, less on long steps (kLongStep)
   SolveReport solve;
   StepTimings timings;
   int active_nodes = 0;  // stress rows (= velocity nodes of cells holding particles)
@@ -75,27 +72,6 @@ constexpr double kCohesiveFill = 0.4;
 // phi_max 0.6, of a 3D cell at 3 per axis 0.022: this is under half of
 // that (docs/validation.md, "Shear rate of sand at rest").
 constexpr double kEmptyNodePhi = 1e-2;
-
-// Steps longer than kLongStep sqrt(h / |g|) stop their solve at the
-// scene's tolerance times kLongStep sqrt(h / |g|) / dt (solve_tolerance).
-// The residual is relative to the step's whole velocity correction, which
-// for sand at rest is gravity's g dt, so the velocity error a solve leaves
-// at a fixed tolerance, and with it the creep of settled sand, grows with
-// the step. At rest the adaptive step is bounded by the frame or by
-// g dt^2 <= cfl h alone, and on fine grids the steps then grew long enough
-// (1/60 s at 5 mm cells, 2.4 times this bound) for the 2D collapse's
-// settled deposit to creep into a slump again after it had stopped
-// (docs/validation.md, "Settled deposits and long steps"). sqrt(h / |g|)
-// is the step in which a grain at rest would fall half a cell. Flowing
-// sand's steps are shorter (bounded by its speed) and keep the tolerance.
-constexpr double kLongStep = 0.4;
-
-// The tolerance a step of length dt solves to (kLongStep): the scene's
-// `tolerance`, less on steps longer than kLongStep sqrt(h / g).
-inline double solve_tolerance(double tolerance, double dt, double h, double g) {
-  if (!(g > 0.0) || !(dt > 0.0)) return tolerance;
-  return tolerance * std::min(1.0, kLongStep * std::sqrt(h / g) / dt);
-}
 
 // Particles created from the scene's [[sand]] regions (METHOD.md step 1:
 // n particles per cell and per axis, V_p = phi_max h^d / n^d).
