@@ -125,6 +125,7 @@ GridFrame sample_grid(int d) {
     for (int a = 0; a < d; ++a) g.velocity.push_back(0.1 * i - a / 3.0);
     g.pressure.push_back(1234.5 / (i + 1));
     g.active.push_back(i % 2);
+    g.regime.push_back(static_cast<std::uint8_t>(i % 4));
   }
   return g;
 }
@@ -146,6 +147,7 @@ TEST(Writers, VtiRoundTrip) {
       EXPECT_EQ(h.velocity, g.velocity);
       EXPECT_EQ(h.pressure, g.pressure);
       EXPECT_EQ(h.active, g.active);
+      EXPECT_EQ(h.regime, g.regime);
     }
 }
 

@@ -34,7 +34,7 @@ CELLS = (64, 32)
 H = 1.0 / 64
 PARTICLES = 8192
 POINT_ARRAYS = {"velocity", "volume", "pressure", "phi", "stress", "shear_rate", "id", "material"}
-GRID_ARRAYS = {"phi", "velocity", "pressure", "active"}
+GRID_ARRAYS = {"phi", "velocity", "pressure", "active", "regime"}
 
 # Every message VTK emits (errors, warnings) lands here instead of stderr.
 MESSAGES = vtkStringOutputWindow()
@@ -128,13 +128,17 @@ def check_grid(path, time, grain_volume, first):
     names = {pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())}
     check(names == GRID_ARRAYS, f"{path}: point arrays {sorted(names)}")
     check(pd.GetArray("velocity").GetNumberOfComponents() == 3, f"{path}: velocity components")
-    check(pd.GetArray("active").GetDataTypeAsString() == "unsigned char", f"{path}: active type")
-    phi, pressure, active = (pd.GetArray(a) for a in ("phi", "pressure", "active"))
+    for name in ("active", "regime"):
+        check(pd.GetArray(name).GetDataTypeAsString() == "unsigned char", f"{path}: {name} type")
+    phi, pressure, active, regime = (pd.GetArray(a) for a in ("phi", "pressure", "active", "regime"))
     total, actives = 0.0, 0
     for j in range(ny):
         for i in range(nx):
             n = j * nx + i  # x fastest, as VTK orders ImageData points
             total += phi.GetValue(n) * node_volume(i, j)
+            # 0: no stress row; 1-3: separated, sticking, sliding.
+            check((regime.GetValue(n) != 0) == bool(active.GetValue(n)) and regime.GetValue(n) <= 3,
+                  f"{path}: node {i},{j} regime {regime.GetValue(n)}")
             if active.GetValue(n):
                 actives += 1
             else:

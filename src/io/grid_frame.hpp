@@ -10,6 +10,15 @@
 
 namespace sablier {
 
+// GridFrame::regime: the case of the node's stress row after the solve
+// (METHOD.md step 5, the local problem's three candidates).
+enum GridRegime : std::uint8_t {
+  kNoRow = 0,      // no stress row (no grains round the node)
+  kSeparated = 1,  // no stress: loose sand, or grains in flight
+  kSticking = 2,   // stress inside the cone: the sand there moves rigidly
+  kSliding = 3,    // stress on the cone: the sand there yields and flows
+};
+
 struct GridFrame {
   int dimension = 2;
   double time = 0.0;                  // s
@@ -20,6 +29,9 @@ struct GridFrame {
   std::vector<double> velocity;  // interleaved, `dimension` per node, m/s; 0 where inactive
   std::vector<double> pressure;  // bulk phi Tr(lambda)/d, Pa, compression positive; 0 if inactive
   std::vector<std::uint8_t> active;  // 1 where the node has a stress row
+  // How the node's stress row ended the last solve (GridRegime); 0 where
+  // the node has none.
+  std::vector<std::uint8_t> regime;
 
   std::size_t node_count() const {
     return static_cast<std::size_t>(nodes[0]) * nodes[1] * nodes[2];

@@ -25,6 +25,7 @@ std::string format_vti(const GridFrame& g, VtkCompression compression) {
   point += vtk_array_tag("Float64", "velocity", 3, app.add(velocity));
   point += vtk_array_tag("Float64", "pressure", 1, app.add(g.pressure));
   point += vtk_array_tag("UInt8", "active", 1, app.add(g.active));
+  point += vtk_array_tag("UInt8", "regime", 1, app.add(g.regime));
   const std::string extent =
       fmt::format("0 {} 0 {} 0 {}", g.nodes[0] - 1, g.nodes[1] - 1, g.nodes[2] - 1);
   return vtk_file(
@@ -62,8 +63,14 @@ GridFrame parse_vti(const std::string& s, const std::string& source) {
   g.phi = arrays["phi"].values;
   g.pressure = arrays["pressure"].values;
   g.active.assign(arrays["active"].values.begin(), arrays["active"].values.end());
+  // Files written before the array existed (2026-12-07) read as no rows.
+  if (arrays.count("regime"))
+    g.regime.assign(arrays["regime"].values.begin(), arrays["regime"].values.end());
+  else
+    g.regime.assign(n, kNoRow);
   const std::vector<double>& v = arrays["velocity"].values;
-  if (g.phi.size() != n || g.pressure.size() != n || g.active.size() != n || v.size() != 3 * n)
+  if (g.phi.size() != n || g.pressure.size() != n || g.active.size() != n || g.regime.size() != n ||
+      v.size() != 3 * n)
     throw fail("arrays do not match the extent");
   for (std::size_t i = 0; i < n; ++i)
     for (int a = 0; a < g.dimension; ++a) g.velocity.push_back(v[3 * i + a]);

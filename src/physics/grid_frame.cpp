@@ -57,6 +57,7 @@ GridFrame Simulation<D>::grid_frame() const {
   g.velocity.assign(n * D, 0.0);
   g.pressure.assign(n, 0.0);
   g.active.assign(n, 0);
+  g.regime.assign(n, kNoRow);
 
   const bool solved = problem_.rows() > 0;
   if (solved) {
@@ -79,6 +80,17 @@ GridFrame Simulation<D>::grid_frame() const {
     g.active[i] = 1;
     for (int a = 0; a < D; ++a) g.velocity[i * D + a] = problem_.velocity[node][a];
     g.pressure[i] = row_bulk_stress(j).trace() / D;
+    switch (problem_.state[j]) {
+      case DPCase::Stick:
+        g.regime[i] = kSticking;
+        break;
+      case DPCase::Slide:
+        g.regime[i] = kSliding;
+        break;
+      default:  // separated, or a row too empty to carry a stress
+        g.regime[i] = kSeparated;
+        break;
+    }
   }
   return g;
 }
