@@ -16,7 +16,7 @@ enum GridRegime : std::uint8_t {
   kNoRow = 0,      // no stress row (no grains round the node)
   kSeparated = 1,  // no stress: loose sand, or grains in flight
   kSticking = 2,   // stress inside the cone: the sand there moves rigidly
-  kSliding = 3,    // stress on the cone: the sand there yields and flows
+  kSliding = 3,    // stress on the cone: at yield (flowing where its velocity shears)
 };
 
 struct GridFrame {
