@@ -75,10 +75,13 @@ TEST(GridFrame, BedAtRest2D) {
     }
   }
   // Sand at rest: most rows hold it inside their cones. Some sit on the
-  // cone with no strain rate (the stress field is not unique, and the
-  // solver leaves some nodes at the limit; measured 432 of 451 sticking).
+  // cone with no strain rate: the stress field is not unique, and the
+  // solver leaves some nodes at the limit (measured 432 of 451 sticking),
+  // how many is its choice, not the physics'. What the physics fixes is
+  // the contrast with sand that flows, where no row sticks
+  // (LayerFlowingDownASlopeSlidesEverywhere2D).
   std::cout << "bed at rest: " << sticking << " of " << inside << " rows inside sticking\n";
-  EXPECT_GT(sticking, 0.8 * inside);
+  EXPECT_GT(sticking, inside / 2);
   // Pressure grows with depth, as the weight of the sand above does. Node by
   // node it is noisy (the stress field is not unique: METHOD.md), so the
   // check is on each row's mean over the inner nodes: the mean stress is a
@@ -152,6 +155,18 @@ TEST(GridFrame, BedAtRest3D) {
   EXPECT_EQ(layer_mean(g.phi, 7), 0.0);
   for (int k = 0; k < 5; ++k)
     EXPECT_GT(layer_mean(g.pressure, k), layer_mean(g.pressure, k + 1)) << "layer " << k;
+  // The rows of the lower layers carry a stress, mostly inside the cone
+  // (measured 184 of 264; as in 2D, the share on the cone is the solver's
+  // choice); the top layer has none.
+  int stressed = 0, sticking = 0;
+  for (std::size_t n = 0; n < 4 * layer; ++n) {
+    EXPECT_TRUE(g.regime[n] == kSticking || g.regime[n] == kSliding) << "node " << n;
+    ++stressed;
+    sticking += g.regime[n] == kSticking;
+  }
+  std::cout << "3D bed at rest: " << sticking << " of " << stressed << " lower rows sticking\n";
+  EXPECT_GT(sticking, stressed / 2);
+  for (std::size_t n = 7 * layer; n < 8 * layer; ++n) EXPECT_EQ(g.regime[n], kNoRow);
 }
 
 fs::path fresh(const std::string& name) { return test::fresh_dir("grid_" + name); }
