@@ -418,14 +418,7 @@ TEST(Physics, FrictionlessColumnBecomesAFlatLayer) {
 // theta is clearly above the 2D Mohr-Coulomb limit asin(mu) (the angle above
 // which no stress in the cone balances the layer's own slope).
 double tilted_layer_speed(double theta_deg, double mu, bool free_end, double t) {
-  const double th = theta_deg * M_PI / 180.0;
-  const std::string gravity = "gravity=[" + std::to_string(9.81 * std::sin(th)) + "," +
-                              std::to_string(-9.81 * std::cos(th)) + "]";
-  SceneConfig s = scene("collapse2d.toml",
-                        {"grid.resolution=[80,20]", "sand.0.max=[1.0,0.1]", gravity,
-                         "material.mu=" + std::to_string(mu),
-                         std::string("boundary.xmax=") + (free_end ? "\"free\"" : "\"slip\"")});
-  Simulation<2> sim(s);
+  Simulation<2> sim(test::tilted_layer(theta_deg, mu, free_end));
   run_until(sim, t);
   return sim.max_speed();
 }

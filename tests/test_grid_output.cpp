@@ -116,13 +116,7 @@ TEST(GridFrame, BedAtRest2D) {
 // at 0.5 s: 382 rows sliding, 146 separated (its surface and its front),
 // none sticking.
 TEST(GridFrame, LayerFlowingDownASlopeSlidesEverywhere2D) {
-  const double th = 35.0 * M_PI / 180.0;
-  const SceneConfig s = load_scene(scene_file("collapse2d.toml"),
-                                   {"grid.resolution=[80,20]", "sand.0.max=[1.0,0.1]",
-                                    "gravity=[" + std::to_string(9.81 * std::sin(th)) + "," +
-                                        std::to_string(-9.81 * std::cos(th)) + "]",
-                                    "material.mu=0.4", "boundary.xmax=\"free\""});
-  Simulation<2> sim(s);
+  Simulation<2> sim(test::tilted_layer(35.0, 0.4, true));
   const GridFrame g = after(sim, 0.5);
   int count[4] = {0, 0, 0, 0};
   for (std::size_t n = 0; n < g.node_count(); ++n) {

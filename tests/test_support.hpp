@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -106,6 +107,19 @@ inline std::string scene_file(const std::string& name) {
 // A shipped scene, loaded with `--set`-style overrides.
 inline SceneConfig scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
   return load_scene(scene_file(name), overrides);
+}
+
+// A 2D layer 10 cm deep across a 1 m channel (collapse2d at 80 x 20 cells)
+// on a rough floor, under gravity tilted by theta_deg, with friction mu and
+// its downhill end free or a slip wall.
+inline SceneConfig tilted_layer(double theta_deg, double mu, bool free_end) {
+  const double th = theta_deg * kPi / 180.0;
+  const std::string gravity = "gravity=[" + std::to_string(9.81 * std::sin(th)) + "," +
+                              std::to_string(-9.81 * std::cos(th)) + "]";
+  return scene("collapse2d.toml",
+               {"grid.resolution=[80,20]", "sand.0.max=[1.0,0.1]", gravity,
+                "material.mu=" + std::to_string(mu),
+                std::string("boundary.xmax=") + (free_end ? "\"free\"" : "\"slip\"")});
 }
 
 // The scene with its sand replaced by one small block (5 cm on a side) at
