@@ -180,6 +180,7 @@ class Simulation {
   void sort_particles();
   void transfer_to_grid(double dt);
   void build_rows(double dt);
+  void build_cells(double dt);
   int unconstrained_velocity(double dt);
   // Rigid bodies (METHOD.md section 3): their velocity unknowns in the cone
   // problem, and their motion over the step once it is solved.

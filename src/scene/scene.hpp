@@ -86,6 +86,11 @@ struct SolverConfig {
   // Clamp: METHOD.md's pure clamp and nothing else (over-compacts).
   Decompaction decompaction = Decompaction::Project;
   int decompaction_moves = 4;
+  // Node-to-node stabilisation (solver/cell_rows.hpp): linear viscous rows
+  // on the sand's interior cells that resist motions alternating from node
+  // to node, eta = stabilization rho phi_max h^2 / dt; 0 = none (METHOD.md's
+  // discretisation alone).
+  double stabilization = 0.0;
 };
 
 struct TimeConfig {

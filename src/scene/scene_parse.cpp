@@ -95,6 +95,7 @@ const std::vector<Field<SolverConfig>> kSolverFields{
     real("relaxation", &SolverConfig::relaxation, open_closed(0, 1)),
     whole("zone_rows", &SolverConfig::zone_rows, closed(0, kInf)),
     whole("decompaction_moves", &SolverConfig::decompaction_moves, closed(1, 16)),
+    real("stabilization", &SolverConfig::stabilization, closed(0, 1000)),
 };
 const std::vector<Field<SandConfig>> kSandFields{
     whole("particles_per_cell", &SandConfig::particles_per_cell, closed(1, 8)),

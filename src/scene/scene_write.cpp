@@ -182,8 +182,9 @@ std::string scene_to_toml(const SceneConfig& s) {
       "zone_rows = {}\n",
       num(s.solver.tolerance), s.solver.max_iterations, s.solver.anderson, num(s.solver.relaxation),
       s.solver.zone_rows);
-  out += fmt::format("decompaction = \"{}\"\ndecompaction_moves = {}\n",
-                     decompaction_name(s.solver.decompaction), s.solver.decompaction_moves);
+  out += fmt::format("decompaction = \"{}\"\ndecompaction_moves = {}\nstabilization = {}\n",
+                     decompaction_name(s.solver.decompaction), s.solver.decompaction_moves,
+                     num(s.solver.stabilization));
   out += "\n[boundary]\n";
   for (int f = 0; f < 2 * d; ++f)
     out += fmt::format("{} = \"{}\"\n", faces[f], boundary_name(s.boundary.faces[f]));

@@ -159,7 +159,7 @@ class AndersonMixer {
     double gamma[kMaxDepth] = {};
   };
 
-  AndersonMixer(int depth, int rows, const SumBlocks& blocks)
+  AndersonMixer(int depth, int rows, const SumBlocks& blocks, int cells = 0)
       : m_(std::min(depth, kMaxDepth)), blocks_(&blocks) {
     if (m_ <= 0) return;
     const std::int64_t nfree = blocks.start.back();
@@ -169,6 +169,8 @@ class AndersonMixer {
     f_prev_.assign(nfree, Vec<D>::Zero());
     gu_prev_.assign(nfree, Vec<D>::Zero());
     gl_prev_.assign(rows, SymVec<D>::Zero());
+    dGc_.assign(m_, std::vector<SymVec<D>>(cells, SymVec<D>::Zero()));
+    gc_prev_.assign(cells, SymVec<D>::Zero());
     partial_.assign(std::int64_t(blocks.count()) * kMaxSums, 0.0);
   }
 
@@ -251,9 +253,10 @@ class AndersonMixer {
   // barrier: the thread has written its own rows and its share of the free
   // nodes (SumBlocks::share), which is what the caller may read back before
   // its next barrier. depth() > 0.
-  template <class OwnRows>
+  template <class OwnRows, class OwnCells>
   void mix(const Team& team, ConeProblem<D>& p, const std::vector<std::int64_t>& free,
-           std::vector<Vec<D>>& u_before, double fnorm2, const OwnRows& own_rows, State& st) const {
+           std::vector<Vec<D>>& u_before, double fnorm2, const OwnRows& own_rows,
+           const OwnCells& own_cells, State& st) const {
     const auto [q0, q1] = blocks_->share(team);
     // The history bookkeeping, the same on every thread.
     const bool grew = st.have_prev && fnorm2 > kGrowth * kGrowth * st.fnorm2_prev;
@@ -304,6 +307,18 @@ class AndersonMixer {
       const std::int64_t o = std::int64_t(pos) * SD;
       mix_rows(lambda + std::int64_t(j0) * SD, prev + o, new_dl ? new_dl + o : nullptr, dl, o,
                gamma, kc, std::int64_t(j1 - j0) * SD);
+    });
+    // The cell rows' stresses likewise, stored by cell index; own_cells(f)
+    // calls f(c0, c1) on the thread's ranges of cells.
+    if (gc_prev_.empty()) return;
+    double* stress = flat(p.cell_stress);
+    for (int a = 0; a < kc; ++a) dl[a] = flat(dGc_[idx[a]]);
+    double* new_dc = record ? flat(dGc_[slot]) : nullptr;
+    double* prev_c = flat(gc_prev_);
+    own_cells([&](int c0, int c1) {
+      const std::int64_t o = std::int64_t(c0) * SD;
+      mix_rows(stress + o, prev_c + o, new_dc ? new_dc + o : nullptr, dl, o, gamma, kc,
+               std::int64_t(c1 - c0) * SD);
     });
   }
 
@@ -371,6 +386,8 @@ class AndersonMixer {
   mutable std::vector<std::vector<SymVec<D>>> dGl_;
   mutable std::vector<Vec<D>> f_prev_, gu_prev_;
   mutable std::vector<SymVec<D>> gl_prev_;
+  mutable std::vector<std::vector<SymVec<D>>> dGc_;  // the cell rows' (ConeProblem::cell_stress)
+  mutable std::vector<SymVec<D>> gc_prev_;
 };
 
 }  // namespace solver_detail

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "solver/anderson.hpp"
+#include "solver/cell_rows.hpp"
 #include "solver/relaxation.hpp"
 #include "solver/slide_batch.hpp"
 #include "solver/stencil.hpp"
@@ -384,6 +385,8 @@ void add_stress_velocities(ConeProblem<D>& p) {
           for (int j = j0; j < j1; ++j) move(j);
         },
         [] {}, [&] { barrier.wait(); });
+    solver_detail::scatter_cell_stresses<D>(
+        p, Team{omp_get_thread_num(), omp_get_num_threads(), &barrier});
   }
 }
 
@@ -426,8 +429,10 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::fill(p.state.begin(), p.state.end(), DPCase::Separation);
   p.flips.assign(n, 0);
   p.calm.assign(n, 0);
+  const int cells = p.cells();
+  if (cells > 0) solver_detail::assemble_cells<D>(p);
   add_stress_velocities<D>(p);  // warm start
-  AndersonMixer<D> mixer(anderson_depth, n, blocks);
+  AndersonMixer<D> mixer(anderson_depth, n, blocks, cells);
   const bool plain = mixer.depth() <= 0;
   // One parallel region for the whole solve: a fork and join per colour
   // would cost more than a barrier (measured: about 2 us against 0.4 us on
@@ -449,7 +454,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   // going back to it, they are recomputed from its stresses, as the warm
   // start computes them (the same velocities but for rounding).
   const int keep_from = std::max(1, max_iterations / 2);
-  std::vector<SymVec<D>> best_lambda;
+  std::vector<SymVec<D>> best_lambda, best_cell_stress;
   std::vector<DPCase> best_state;
   bool went_back = false;
   SpinBarrier barrier;
@@ -482,6 +487,14 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           },
           [] {}, [] {});
     };
+    // f(c0, c1) on each range of the cell rows this thread updates
+    // (update_cells: its share of each colour).
+    const auto own_cells = [&](const auto& f) {
+      for (std::size_t k = 0; k + 1 < p.cell_colour_start.size(); ++k) {
+        const auto [c0, c1] = team.split(p.cell_colour_start[k], p.cell_colour_start[k + 1]);
+        if (c0 < c1) f(c0, c1);
+      }
+    };
     typename AndersonMixer<D>::State mix_state;
     SlideQueue<D> queue;
     int my_iterations = 0;
@@ -496,6 +509,8 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       order.walk(
           team.rank, [&](int j0, int j1) { update_rows<D>(p, j0, j1, queue); },
           [&] { queue.flush(p); }, [&] { team.sync(); });
+      // The walk ends at a barrier: the cell rows see every row's update.
+      if (cells > 0) solver_detail::update_cells<D>(p, team);
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2. Without mixing, u_prev
       // takes u^k here for the next sweep (what the mixer would do in a pass
       // of its own); with it, the mixer's pass sums them (measure).
@@ -527,6 +542,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           if (team.rank == 0) {
             best_lambda.resize(n);
             best_state.resize(n);
+            best_cell_stress.resize(cells);
           }
           team.sync();
           allocated = true;
@@ -537,9 +553,12 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
             best_state[j] = p.state[j];
           }
         });
+        own_cells([&](int c0, int c1) {
+          for (int c = c0; c < c1; ++c) best_cell_stress[c] = p.cell_stress[c];
+        });
       }
       if (it < max_iterations && !plain)
-        mixer.mix(team, p, free, u_prev, sums[0], own_rows, mix_state);
+        mixer.mix(team, p, free, u_prev, sums[0], own_rows, own_cells, mix_state);
     }
     const bool restored = my_residual > tolerance && best < my_residual;
     if (restored) {
@@ -550,6 +569,9 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
           p.lambda[j] = best_lambda[j];
           p.state[j] = best_state[j];
         }
+      });
+      own_cells([&](int c0, int c1) {
+        for (int c = c0; c < c1; ++c) p.cell_stress[c] = best_cell_stress[c];
       });
       for (std::int64_t q = q0; q < q1; ++q) set_velocity_at<D>(p, free[q], u_free[q]);
       my_residual = best;

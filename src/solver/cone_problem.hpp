@@ -155,6 +155,26 @@ struct ConeProblem {
   std::vector<std::int64_t> contact_other_body;  // per contact row: a second body, or -1
   std::vector<Vec<D>> contact_other_arm;         // per contact row: its lever arm, m
 
+  // Node-to-node stabilisation (solver/cell_rows.hpp): linear viscous rows
+  // on grid cells, each resisting its cell's node-to-node strain rate
+  // (A_c u) with the stress s_c = -2 eta A_c u. A_c u = sym(sum_n u_n G_n^T)
+  // over the 4^d nodes around the cell (cell_stencil, offsets from its
+  // lowest corner node cell_base), G the same for every cell
+  // (cell_gradient). The rows come in 4^d colours (cell coordinates mod 4:
+  // rows of one colour touch disjoint nodes), rows [cell_colour_start[c],
+  // cell_colour_start[c + 1]). None when cell_base is empty.
+  static constexpr int NF = ipow(4, D);
+  std::array<std::int64_t, NF> cell_stencil{};
+  Eigen::Matrix<double, D, NF> cell_gradient = Eigen::Matrix<double, D, NF>::Zero();  // 1/m
+  std::vector<std::int64_t> cell_base;
+  std::vector<int> cell_colour_start;
+  double cell_viscosity = 0.0;           // eta, Pa s
+  double cell_volume = 0.0;              // V_c = h^d, m^3
+  std::vector<SymVec<D>> cell_stress;    // s_c, Pa: warm start in, solution out
+  std::vector<SymMat<D>> cell_delassus;  // W_c = V_c A_c M^{-1} A_c^T (1/(Pa s))
+  std::vector<SymMat<D>> cell_inverse;   // (I + 2 eta W_c)^{-1}
+  int cells() const { return static_cast<int>(cell_base.size()); }
+
   // The second body of contact row c (index past first_contact), or -1.
   std::int64_t other_body(int c) const {
     return contact_other_body.empty() ? -1 : contact_other_body[c];
