@@ -195,6 +195,7 @@ void Simulation<D>::build_rows(double dt) {
 // a node-to-node motion relative to its inertia, 2 eta W_c, does not depend
 // on the cell size, the step or the density.
 constexpr double kStabilizedFill = 0.98;
+constexpr double kStabilizedSpeed = 0.1;
 
 template <int D>
 void Simulation<D>::build_cells(double dt) {
@@ -218,8 +219,10 @@ void Simulation<D>::build_cells(double dt) {
     const int r = row_of_node_[node];
     return r >= 0 && r < obstacle_row_start_ && (row_in_solid_.empty() || !row_in_solid_[r]);
   };
+  const double rest_speed = kStabilizedSpeed * std::sqrt(gravity_.norm() * h);
   const auto full_node = [&](std::int64_t node) {
-    return node_grain_volume_[node] >= kStabilizedFill * phi_max_ * P.volume[row_of_node_[node]];
+    return node_grain_volume_[node] >= kStabilizedFill * phi_max_ * P.volume[row_of_node_[node]] &&
+           node_momentum_[node].norm() <= rest_speed * node_mass_[node];
   };
   constexpr int colours = ipow(4, D);
   std::vector<std::vector<std::int64_t>> by_colour(colours);

@@ -123,6 +123,7 @@ template <int D>
 void scatter_cell_stresses(ConeProblem<D>& p, const Team& team) {
   const int colours = static_cast<int>(p.cell_colour_start.size()) - 1;
   for (int k = 0; k < colours; ++k) {
+    if (p.cell_colour_start[k] == p.cell_colour_start[k + 1]) continue;  // on every thread
     const auto [c0, c1] = team.split(p.cell_colour_start[k], p.cell_colour_start[k + 1]);
     for (int c = c0; c < c1; ++c) scatter_cell<D>(p, c, p.cell_stress[c]);
     team.sync();
@@ -138,6 +139,7 @@ void update_cells(ConeProblem<D>& p, const Team& team) {
   const double two_eta = 2.0 * p.cell_viscosity;
   const int colours = static_cast<int>(p.cell_colour_start.size()) - 1;
   for (int k = 0; k < colours; ++k) {
+    if (p.cell_colour_start[k] == p.cell_colour_start[k + 1]) continue;  // on every thread
     const auto [c0, c1] = team.split(p.cell_colour_start[k], p.cell_colour_start[k + 1]);
     for (int c = c0; c < c1; ++c) {
       const SymVec<D> y = cell_strain<D>(p, c);
