@@ -215,9 +215,16 @@ void Simulation<D>::build_cells(double dt) {
     for (int a = 0, r = n; a < D; ++a, r /= 4) o += (r % 4 - 1) * grid_.node_stride(a);
     P.cell_stencil[n] = o;
   }
+  // Nodes a solid touches (a contact row, or part of the node's volume
+  // inside a solid): sand at rest that a solid loads or pushes deforms from
+  // node to node there (a box dropped on a bed rested 4 mm above the
+  // surface with them stabilised, and sank 0.4 mm into it without).
+  touched_.assign(grid_.node_count(), 0);
+  for (int j = obstacle_row_start_; j < P.rows(); ++j) touched_[P.node[j]] = 1;
   const auto sand_node = [&](std::int64_t node) {
     const int r = row_of_node_[node];
-    return r >= 0 && r < obstacle_row_start_ && (row_in_solid_.empty() || !row_in_solid_[r]);
+    if (r < 0 || r >= obstacle_row_start_ || touched_[node]) return false;
+    return !row_in_solid_[r] && !(row_solid_[r] > 0.0);
   };
   const double rest_speed = kStabilizedSpeed * std::sqrt(gravity_.norm() * h);
   const auto full_node = [&](std::int64_t node) {

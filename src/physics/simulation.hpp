@@ -391,6 +391,7 @@ class Simulation {
   std::vector<double> row_solid_;  // per sand row: solid fraction of V_j
   // Per sand row: the node lies h/2 or more inside a solid (build_rows).
   std::vector<char> row_in_solid_;
+  std::vector<char> touched_;  // per node: a solid touches it (build_cells)
 
   ConeProblem<D> problem_;
 };
