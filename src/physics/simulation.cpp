@@ -186,11 +186,13 @@ void Simulation<D>::build_rows(double dt) {
 // The cell rows of the node-to-node stabilisation (solver/cell_rows.hpp):
 // every cell whose 4^d footprint nodes all carry sand rows outside the
 // solids (the sand's interior, a cell in from its surface and the box)
-// and whose corners are full (grain volume at least kStabilizedFill
-// phi_max V_j: where grains may still compact, node-to-node motion is the
-// compaction itself; stabilising it kept beds settling onto planes moving
-// at 1.2-4.6 mm/s, docs/method.md), in 4^d colours by cell coordinates
-// mod 4, each colour by cell index.
+// and whose corners hold sand at rest: full (grain volume at least
+// kStabilizedFill phi_max V_j: where grains may still compact, node-to-node
+// motion is the compaction itself; stabilising it kept beds settling onto
+// planes moving at 1.2-4.6 mm/s) and slower than kStabilizedSpeed
+// sqrt(|g| h) (stabilising flowing sand slowed silo2d's discharge by 21%;
+// docs/method.md). In 4^d colours by cell coordinates mod 4, each colour
+// by cell index.
 // eta = solver.stabilization rho_0 phi_max h^2 / dt: the rows' damping of
 // a node-to-node motion relative to its inertia, 2 eta W_c, does not depend
 // on the cell size, the step or the density.
