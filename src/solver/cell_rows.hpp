@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 
 #include "core/tensor.hpp"
 #include "solver/cone_problem.hpp"
@@ -91,65 +92,66 @@ inline void scatter_cell(ConeProblem<D>& p, int c, const SymVec<D>& ds) {
 // Each cell row's W_c and (I + 2 eta W_c)^{-1}.
 template <int D>
 void assemble_cells(ConeProblem<D>& p) {
-  constexpr int SD = sym_size(D);
   const int n = p.cells();
   p.cell_delassus.resize(n);
   p.cell_inverse.resize(n);
   p.cell_stress.resize(n, SymVec<D>::Zero());
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < n; ++c) {
-    const std::int64_t base = p.cell_base[c];
-    SymMat<D> W;
-    for (int k = 0; k < SD; ++k) {
-      SymVec<D> e = SymVec<D>::Zero();
-      e[k] = 1.0;
-      const Mat<D> T = from_sym<D>(e);
-      Mat<D> L = Mat<D>::Zero();
-      for (int f = 0; f < ConeProblem<D>::NF; ++f) {
-        const Vec<D> g = p.cell_gradient.col(f);
-        L.noalias() += p.inv_mass[base + p.cell_stencil[f]].cwiseProduct(T * g) * g.transpose();
-      }
-      W.col(k) = p.cell_volume * to_sym<D>(L);
-    }
+    const Vec<D>* im = p.inv_mass.data() + p.cell_base[c];
+    SymMat<D> W = p.cell_volume * local_delassus<D>(ConeProblem<D>::NF, [&](int f) {
+                    return std::pair<Vec<D>, Vec<D>>(im[p.cell_stencil[f]], p.cell_gradient.col(f));
+                  });
     W = (0.5 * (W + W.transpose())).eval();
     p.cell_delassus[c] = W;
     p.cell_inverse[c] = (SymMat<D>::Identity() + 2.0 * p.cell_viscosity * W).inverse();
   }
 }
 
-// Adds every cell row's stress to the velocities (u += M^{-1} V_c A_c^T
-// s_c), colour by colour, each thread its share of each colour.
-template <int D>
-void scatter_cell_stresses(ConeProblem<D>& p, const Team& team) {
+// f(c0, c1) on the thread's share of each colour of the cell rows (rows
+// of one colour touch disjoint nodes, so the result does not depend on the
+// team), then after_colour() on every thread. Colours without rows are
+// skipped by every thread alike.
+template <int D, class F, class A>
+void walk_cells(const ConeProblem<D>& p, const Team& team, const F& f, const A& after_colour) {
   const int colours = static_cast<int>(p.cell_colour_start.size()) - 1;
   for (int k = 0; k < colours; ++k) {
-    if (p.cell_colour_start[k] == p.cell_colour_start[k + 1]) continue;  // on every thread
+    if (p.cell_colour_start[k] == p.cell_colour_start[k + 1]) continue;
     const auto [c0, c1] = team.split(p.cell_colour_start[k], p.cell_colour_start[k + 1]);
-    for (int c = c0; c < c1; ++c) scatter_cell<D>(p, c, p.cell_stress[c]);
-    team.sync();
+    if (c0 < c1) f(c0, c1);
+    after_colour();
   }
 }
 
-// One Gauss-Seidel pass over the cell rows, colour by colour, each thread
-// its contiguous share of each colour (rows of one colour touch disjoint
-// nodes, so the result does not depend on the team), the team waiting
-// after each colour.
+// Adds every cell row's stress to the velocities (u += M^{-1} V_c A_c^T
+// s_c), the team waiting after each colour.
+template <int D>
+void scatter_cell_stresses(ConeProblem<D>& p, const Team& team) {
+  walk_cells<D>(
+      p, team,
+      [&](int c0, int c1) {
+        for (int c = c0; c < c1; ++c) scatter_cell<D>(p, c, p.cell_stress[c]);
+      },
+      [&] { team.sync(); });
+}
+
+// One Gauss-Seidel pass over the cell rows, the team waiting after each
+// colour.
 template <int D>
 void update_cells(ConeProblem<D>& p, const Team& team) {
   const double two_eta = 2.0 * p.cell_viscosity;
-  const int colours = static_cast<int>(p.cell_colour_start.size()) - 1;
-  for (int k = 0; k < colours; ++k) {
-    if (p.cell_colour_start[k] == p.cell_colour_start[k + 1]) continue;  // on every thread
-    const auto [c0, c1] = team.split(p.cell_colour_start[k], p.cell_colour_start[k + 1]);
-    for (int c = c0; c < c1; ++c) {
-      const SymVec<D> y = cell_strain<D>(p, c);
-      const SymVec<D>& s = p.cell_stress[c];
-      const SymVec<D> next = -two_eta * (p.cell_inverse[c] * (y - p.cell_delassus[c] * s));
-      scatter_cell<D>(p, c, next - s);
-      p.cell_stress[c] = next;
-    }
-    team.sync();
-  }
+  walk_cells<D>(
+      p, team,
+      [&](int c0, int c1) {
+        for (int c = c0; c < c1; ++c) {
+          const SymVec<D> y = cell_strain<D>(p, c);
+          const SymVec<D>& s = p.cell_stress[c];
+          const SymVec<D> next = -two_eta * (p.cell_inverse[c] * (y - p.cell_delassus[c] * s));
+          scatter_cell<D>(p, c, next - s);
+          p.cell_stress[c] = next;
+        }
+      },
+      [&] { team.sync(); });
 }
 
 }  // namespace solver_detail

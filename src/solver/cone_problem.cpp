@@ -20,6 +20,7 @@ using solver_detail::AndersonMixer;
 using solver_detail::apply_B;
 using solver_detail::deterministic_sums;
 using solver_detail::free_velocities;
+using solver_detail::local_delassus;
 using solver_detail::pack_coupling_lines;
 using solver_detail::scatter_stress;
 using solver_detail::set_velocity_at;
@@ -285,7 +286,6 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
 
 template <int D>
 void assemble_delassus(ConeProblem<D>& p) {
-  constexpr int SD = sym_size(D);
   const int n = p.rows();
   // The sand rows' blocks (contact rows get theirs below).
   const int sand = std::min(p.first_contact, n);
@@ -297,18 +297,11 @@ void assemble_delassus(ConeProblem<D>& p) {
   for (int j = 0; j < sand; ++j) {
     const auto& g = p.coupling[j];
     const Vec<D>* im = p.inv_mass.data() + p.node[j];
-    SymMat<D> W = SymMat<D>::Zero();
-    for (int c = 0; c < SD; ++c) {
-      SymVec<D> e = SymVec<D>::Zero();
-      e[c] = 1.0;
-      const Mat<D> T = from_sym<D>(e);
-      Mat<D> L = Mat<D>::Zero();
-      for (int s = 0; s < ConeProblem<D>::NS; ++s) {
-        const Vec<D> du = im[p.stencil[s]].cwiseProduct(T * g.col(s));
-        L.noalias() += du * g.col(s).transpose();
-      }
-      W.col(c) = to_sym<D>(L) / p.volume[j];
-    }
+    const SymMat<D> W =
+        local_delassus<D>(
+            ConeProblem<D>::NS,
+            [&](int s) { return std::pair<Vec<D>, Vec<D>>(im[p.stencil[s]], g.col(s)); }) /
+        p.volume[j];
     p.delassus[j].set(0.5 * (W + W.transpose()));
     p.delassus[j].unrotated(p.unrotated[j].first_row, p.unrotated[j].inverse);
     p.unrotated[j].degenerate = p.delassus[j].degenerate;
@@ -489,12 +482,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     };
     // f(c0, c1) on each range of the cell rows this thread updates
     // (update_cells: its share of each colour).
-    const auto own_cells = [&](const auto& f) {
-      for (std::size_t k = 0; k + 1 < p.cell_colour_start.size(); ++k) {
-        const auto [c0, c1] = team.split(p.cell_colour_start[k], p.cell_colour_start[k + 1]);
-        if (c0 < c1) f(c0, c1);
-      }
-    };
+    const auto own_cells = [&](const auto& f) { solver_detail::walk_cells<D>(p, team, f, [] {}); };
     typename AndersonMixer<D>::State mix_state;
     SlideQueue<D> queue;
     int my_iterations = 0;

@@ -127,6 +127,29 @@ inline const float* coupling_line(const ConeProblem<D>& p, int j) {
   return p.coupling_lines.data() + std::size_t(j) * ConeProblem<D>::kLineEntries;
 }
 
+// sum_s sym((M_s^{-1} T g_s) g_s^T) for each basis tensor T (column k for
+// basis element k), over n nodes s, node(s) giving (M_s^{-1}, g_s): the
+// diagonal block of a row with coupling vectors g_s, before its scaling
+// (assemble_delassus, assemble_cells).
+template <int D, class Node>
+SymMat<D> local_delassus(int n, const Node& node) {
+  constexpr int SD = sym_size(D);
+  SymMat<D> W;
+  for (int c = 0; c < SD; ++c) {
+    SymVec<D> e = SymVec<D>::Zero();
+    e[c] = 1.0;
+    const Mat<D> T = from_sym<D>(e);
+    Mat<D> L = Mat<D>::Zero();
+    for (int s = 0; s < n; ++s) {
+      const auto [im, g] = node(s);
+      const Vec<D> du = im.cwiseProduct(T * g);
+      L.noalias() += du * g.transpose();
+    }
+    W.col(c) = to_sym<D>(L);
+  }
+  return W;
+}
+
 // (B u)_j: the symmetric part of sum_i u_i g_ji^T, in basis coordinates.
 template <int D>
 inline SymVec<D> apply_B(const ConeProblem<D>& p, int j) {
