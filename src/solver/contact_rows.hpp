@@ -100,8 +100,8 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   p.lambda[j] += dl;
 }
 
-// Each contact row's block W_c = w F^T M^{-1} F on the row's own node,
-// w = |g_jj| (and its body's share, below).
+// Each contact row's block (ConeProblem::contact_delassus): W_c = w F^T M^{-1} F
+// on the row's own node, w = |g_jj|, and its bodies' shares (below).
 template <int D>
 void assemble_contacts(ConeProblem<D>& p) {
   const int n = p.rows();
@@ -113,7 +113,7 @@ void assemble_contacts(ConeProblem<D>& p) {
     const Mat<D>& F = p.contact_frame[j - first];
     const double w = p.coupling[j].col(centre).norm();
     // Velocity change of the node relative to the contact per unit force:
-    // the node's inverse mass, plus the body's (cone_problem.hpp, push_body):
+    // the node's inverse mass, plus the body's (push_body, above):
     // M_b^{-1} + [a]x^T J^{-1} [a]x in 3D, M_b^{-1} + a_perp a_perp^T / J in 2D.
     Mat<D> Wc = w * F.transpose() * p.inv_mass[p.node[j]].asDiagonal() * F;
     const auto add_body = [&](std::int64_t v, const Vec<D>& a) {
