@@ -92,32 +92,29 @@ class DenseGrid {
     return v;
   }
 
-  // Index offsets of the 3^d stencil around a node (offset k <-> the
-  // neighbour at relative coordinates (k % 3 - 1, (k / 3) % 3 - 1, ...)).
-  std::array<std::int64_t, ipow(3, D)> stencil_offsets() const {
-    std::array<std::int64_t, ipow(3, D)> off{};
-    for (int k = 0; k < ipow(3, D); ++k) {
+  // Index offsets of the N^d block of nodes starting `first` nodes from a
+  // node along each axis: offset k <-> relative coordinates
+  // (k % N + first, (k / N) % N + first, ...).
+  template <int N>
+  std::array<std::int64_t, ipow(N, D)> block_offsets(int first) const {
+    std::array<std::int64_t, ipow(N, D)> off{};
+    for (int k = 0; k < ipow(N, D); ++k) {
       int r = k;
       std::int64_t o = 0;
       for (int a = 0; a < D; ++a) {
-        o += (r % 3 - 1) * node_stride_[a];
-        r /= 3;
+        o += (r % N + first) * node_stride_[a];
+        r /= N;
       }
       off[k] = o;
     }
     return off;
   }
+  // Index offsets of the 3^d stencil around a node (offset k <-> the
+  // neighbour at relative coordinates (k % 3 - 1, (k / 3) % 3 - 1, ...)).
+  std::array<std::int64_t, ipow(3, D)> stencil_offsets() const { return block_offsets<3>(-1); }
   // Offsets of a cell's 2^d corner nodes from its base node (corner c <->
   // bits of c select +1 on each axis).
-  std::array<std::int64_t, ipow(2, D)> corner_offsets() const {
-    std::array<std::int64_t, ipow(2, D)> off{};
-    for (int c = 0; c < ipow(2, D); ++c) {
-      std::int64_t o = 0;
-      for (int a = 0; a < D; ++a) o += ((c >> a) & 1) * node_stride_[a];
-      off[c] = o;
-    }
-    return off;
-  }
+  std::array<std::int64_t, ipow(2, D)> corner_offsets() const { return block_offsets<2>(0); }
 
  private:
   IVec cells_{};

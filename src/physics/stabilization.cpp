@@ -42,12 +42,9 @@ void Simulation<D>::build_cells(double dt) {
   P.cell_viscosity = c * rho0_ * phi_max_ * h * h / dt;
   P.cell_volume = std::pow(h, D);
   P.cell_gradient = solver_detail::cell_gradient_table<D>(h);
+  // The 4^d nodes around the cell, from one before its lowest corner.
+  P.cell_stencil = grid_.template block_offsets<4>(-1);
   constexpr int NF = ConeProblem<D>::NF;
-  for (int n = 0; n < NF; ++n) {
-    std::int64_t o = 0;
-    for (int a = 0, r = n; a < D; ++a, r /= 4) o += (r % 4 - 1) * grid_.node_stride(a);
-    P.cell_stencil[n] = o;
-  }
   // Nodes a solid touches (a contact row, or part of the node's volume
   // inside a solid): sand at rest that a solid loads or pushes deforms from
   // node to node there (a box dropped on a bed rested 4 mm above the
