@@ -498,5 +498,65 @@ TEST(BoxBodies, BoxRestsOnAMeshApex3D) {
   std::filesystem::remove_all(dir);
 }
 
+// A box set flush on another of the same footprint (the crates of a
+// stack): each corner of either sits on an edge or corner of the other,
+// where the nearest face is a matter of round-off, a side face as near as
+// the top. Static equilibrium (face on face): it rests with its bottom on
+// the lower box's top, to 1e-3 of a cell, and does not move sideways.
+// Measured before the corners chose their face by their own direction
+// (obstacle.hpp, corner_distance): the upper box sank 0.2 to 0.6 of a cell
+// into the lower one (2 cm cells) and, 10 um off flush on a box body in
+// 3D, fell through it to the floor. Also a box overhanging the lower one
+// by a tenth of a cell (beyond kCornerSlack: its overhanging corners meet
+// the lower box's edge, and the lower box's corners its face).
+template <int D>
+void flush_box_rests(double offset, bool lower_is_body) {
+  const std::string lower =
+      std::string(D == 2 ? "[[obstacle]]\nshape = \"box\"\nmin = [0.2, 0.0]\nmax = [0.3, 0.05]\n"
+                         : "[[obstacle]]\nshape = \"box\"\nmin = [0.2, 0.1, 0.0]\n"
+                           "max = [0.3, 0.2, 0.05]\n") +
+      (lower_is_body ? "density = 900\n" : "");
+  const std::string upper = "[[obstacle]]\nshape = \"box\"\nmin = [" + num(0.2 + offset) +
+                            (D == 2 ? ", 0.052]\nmax = [" : ", 0.1, 0.052]\nmax = [") +
+                            num(0.3 + offset) + (D == 2 ? ", 0.102]\n" : ", 0.2, 0.102]\n") +
+                            "density = 500\n";
+  const std::string text =
+      (D == 2 ? "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [1.0, 0.5]\n"
+                "resolution = [50, 25]\n"
+              : "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[grid]\nsize = [0.6, 0.3, 0.3]\n"
+                "resolution = [30, 15, 15]\n") +
+      std::string("[boundary]\ndefault = \"stick\"\n") + lower + upper +
+      (D == 2 ? kSpeck2D : kSpeck3D);
+  Simulation<D> sim(parse_scene(text, "flush.toml"));
+  run_until(sim, 1.0);
+  const auto& o = sim.obstacles();
+  const double h = sim.grid().h();
+  const double top = lower_is_body ? o[0].a[D - 1] + o[0].b[D - 1] : o[0].b[D - 1];
+  double low = 1e300, high = -1e300;
+  for (const Vec<D>& c : body_points(o[1])) {
+    low = std::min(low, c[D - 1]);
+    high = std::max(high, c[D - 1]);
+  }
+  const double moved = std::abs(o[1].a[0] - (0.25 + offset));
+  std::cout << D << "D box " << offset << " m off flush on a "
+            << (lower_is_body ? "body" : "fixed box") << ": its corners " << (top - low) / h
+            << " and " << (top + 0.05 - high) / h << " cells under where they rest, moved "
+            << moved / h << " cells, speed " << o[1].velocity.norm() << " m/s\n";
+  EXPECT_LT(std::abs(low - top), 1e-3 * h);
+  EXPECT_LT(std::abs(high - 0.05 - top), 1e-3 * h);  // level: its top 5 cm above
+  EXPECT_LT(moved, 1e-3 * h);
+  EXPECT_LT(o[1].velocity.norm(), 1e-3);
+}
+
+TEST(BoxBodies, BoxSetFlushOnABoxRestsOnIt2D) {
+  for (const double offset : {0.0, 1e-5, 2e-3})
+    for (const bool body : {false, true}) flush_box_rests<2>(offset, body);
+}
+
+TEST(BoxBodies, BoxSetFlushOnABoxRestsOnIt3D) {
+  for (const double offset : {0.0, 1e-5, 2e-3})
+    for (const bool body : {false, true}) flush_box_rests<3>(offset, body);
+}
+
 }  // namespace
 }  // namespace sablier

@@ -250,7 +250,7 @@ void unrotated_cases(unsigned seed) {
     const double xn = stick[0], tn = stick.template tail<S - 1>().norm();
     const double size = 1.0 + std::abs(b[0]) + stick.norm();
     if (std::abs(b[0]) < 1e-9 * size || std::abs(tn - a * xn) < 1e-9 * size) continue;
-    VecS dl;
+    VecS dl = VecS::Zero();  // set when got (zeroed: GCC 12 warns otherwise)
     DPCase got_case;
     const bool got = separate_or_stick_unrotated<S>(w0, inv, lambda, y, shift, a, dl, got_case);
     ASSERT_EQ(got, ref) << "case " << t;

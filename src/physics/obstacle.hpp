@@ -331,6 +331,83 @@ inline double box_distance(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x, 
   return q[axis];
 }
 
+// A box corner meeting a box at (or within `slack` of) one of its edges or
+// corners: box_distance's nearest face is then a matter of round-off (a
+// crate set flush on another: its corners on the other's top edges, a side
+// face as near as the top), and a side face's normal lets the corner sink.
+// Here the face is the one among those within `slack` of the nearest whose
+// outward normal n best follows `towards` (the corner's own inward
+// direction: a contact normal that points out of the box and into the
+// corner's solid, inside both solids' normal cones), ties (to round-off)
+// going to the nearest. Returns the distance along that face's normal (negative inside
+// it); false, with nothing written, where the point is over `slack` outside
+// any face or no other face does better, box_distance's answer then holding.
+template <int D>
+inline bool box_face_towards(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x,
+                             const Vec<D>& towards, double slack, double* distance,
+                             Vec<D>* normal) {
+  const Vec<D> centre = 0.5 * (lo + hi);
+  const Vec<D> q = (x - centre).cwiseAbs() - 0.5 * (hi - lo);
+  if (!(q.maxCoeff() <= slack)) return false;
+  int nearest = 0;
+  for (int k = 1; k < D; ++k)
+    if (q[k] > q[nearest]) nearest = k;
+  const auto side = [&](int k) { return x[k] < centre[k] ? -1.0 : 1.0; };
+  // Better by more than round-off (a turned corner's direction is rounded):
+  // equal scores keep the nearest face.
+  const double margin = 1e-9 * towards.norm();
+  int best = nearest;
+  for (int k = 0; k < D; ++k)
+    if (q[k] >= q[nearest] - slack && side(k) * towards[k] > side(best) * towards[best] + margin)
+      best = k;
+  if (best == nearest) return false;
+  *normal = Vec<D>::Zero();
+  (*normal)[best] = side(best);
+  *distance = q[best];
+  return true;
+}
+
+// The direction from box o's corner c (bit k set: the upper side on axis k,
+// as body_points and the fixed corners number them) into the box: minus the
+// sum of its faces' outward normals there.
+template <int D>
+inline Vec<D> box_corner_inward(const Obstacle<D>& o, int c) {
+  Vec<D> s;
+  for (int k = 0; k < D; ++k) s[k] = (c >> k & 1) ? -1.0 : 1.0;
+  return o.posed ? Vec<D>(o.rotation * s) : s;
+}
+
+// How near (in cells) a box's corner must come to another box's edge or
+// corner for corner_distance to choose the face: far beyond round-off, and
+// small enough that a corner overhanging a box's edge by less is held as if
+// it were on the face (a support wider by at most this).
+inline constexpr double kCornerSlack = 0.05;
+
+// signed_distance for a box corner, `towards` its inward direction
+// (box_corner_inward), against solid o: where o is a box, the face chosen by
+// box_face_towards within `slack` of its edges and corners; else, and
+// elsewhere, signed_distance.
+template <int D>
+inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* normal);
+template <int D>
+inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D>& towards,
+                              double slack, Vec<D>* normal) {
+  if (!o.gone && o.shape == ObstacleShape::Box) {
+    double d;
+    if (!o.posed) {
+      if (box_face_towards<D>(o.a, o.b, x, towards, slack, &d, normal)) return d;
+    } else {
+      const Vec<D> local = o.rotation.transpose() * (x - o.a);
+      const Vec<D> dir = o.rotation.transpose() * towards;
+      if (box_face_towards<D>(Vec<D>(-o.b), o.b, local, dir, slack, &d, normal)) {
+        *normal = o.rotation * *normal;
+        return d;
+      }
+    }
+  }
+  return signed_distance(o, x, normal);
+}
+
 // Signed distance of x to the obstacle (m) and the outward normal there.
 template <int D>
 inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* normal) {

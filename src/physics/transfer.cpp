@@ -185,7 +185,12 @@ void Simulation<D>::transfer_to_grid(double dt) {
       const int n_points = touch_points(o, points);
       for (int t = 0; t < n_points; ++t) {
         Vec<D> out;  // from the solid towards the point
-        const double distance = signed_distance(q, points[t].at, &out);
+        // A box's corner: the face of a box it meets chosen by its own
+        // direction where it sits at that box's edge (corner_distance).
+        const double distance =
+            o.shape == ObstacleShape::Box
+                ? corner_distance(q, points[t].at, box_corner_inward(o, t), kCornerSlack * h, &out)
+                : signed_distance(q, points[t].at, &out);
         const double gap = distance - points[t].reach;
         if (gap >= h) continue;
         const Vec<D> n = -out;
@@ -250,7 +255,11 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const double reach = bounding_radius(o) + h + further;
         if ((x - o.a).squaredNorm() >= reach * reach) continue;
         Vec<D> n;  // the body's outward normal
-        const double from_point = signed_distance(o, x, &n);
+        const double from_point =
+            q.shape == ObstacleShape::Box
+                ? corner_distance(o, x, box_corner_inward(q, static_cast<int>(t)), kCornerSlack * h,
+                                  &n)
+                : signed_distance(o, x, &n);
         const double distance = from_point - further;
         if (distance >= h) continue;
         const std::int64_t key = static_cast<std::int64_t>(s) * count +
