@@ -502,46 +502,56 @@ TEST(BoxBodies, BoxRestsOnAMeshApex3D) {
 // stack): each corner of either sits on an edge or corner of the other,
 // where the nearest face is a matter of round-off, a side face as near as
 // the top. Static equilibrium (face on face): it rests with its bottom on
-// the lower box's top, to 1e-3 of a cell, and does not move sideways.
-// Measured before the corners chose their face by their own direction
-// (obstacle.hpp, corner_distance): the upper box sank 0.2 to 0.6 of a cell
-// into the lower one (2 cm cells) and, 10 um off flush on a box body in
-// 3D, fell through it to the floor. Also a box overhanging the lower one
-// by a tenth of a cell (beyond kCornerSlack: its overhanging corners meet
-// the lower box's edge, and the lower box's corners its face).
+// the lower box's top, level, to 1e-3 of a cell, and does not move
+// sideways. In 2D also as polygons (the same squares' corners), either
+// one or both. Measured before the corners chose their face by their own
+// direction (obstacle.hpp, corner_distance): the upper box sank 0.07 to
+// 0.6 of a cell into the lower one (2 cm cells) and, 10 um off flush on a
+// box body in 3D, fell through it to the floor; polygons 0.14 to 0.53.
+// Also a box overhanging the lower one by a tenth of a cell (beyond
+// kCornerSlack: its overhanging corners meet the lower box's edge, and
+// the lower box's corners its face).
+enum class Solid { Box, Polygon };
+
 template <int D>
-void flush_box_rests(double offset, bool lower_is_body) {
-  const std::string lower =
-      std::string(D == 2 ? "[[obstacle]]\nshape = \"box\"\nmin = [0.2, 0.0]\nmax = [0.3, 0.05]\n"
-                         : "[[obstacle]]\nshape = \"box\"\nmin = [0.2, 0.1, 0.0]\n"
-                           "max = [0.3, 0.2, 0.05]\n") +
-      (lower_is_body ? "density = 900\n" : "");
-  const std::string upper = "[[obstacle]]\nshape = \"box\"\nmin = [" + num(0.2 + offset) +
-                            (D == 2 ? ", 0.052]\nmax = [" : ", 0.1, 0.052]\nmax = [") +
-                            num(0.3 + offset) + (D == 2 ? ", 0.102]\n" : ", 0.2, 0.102]\n") +
-                            "density = 500\n";
+std::string flush_solid(Solid shape, double x0, double z0, double x1, double z1) {
+  if (shape == Solid::Polygon)  // 2D only
+    return "shape = \"polygon\"\nvertices = [[" + num(x0) + ", " + num(z0) + "], [" + num(x1) +
+           ", " + num(z0) + "], [" + num(x1) + ", " + num(z1) + "], [" + num(x0) + ", " + num(z1) +
+           "]]\n";
+  const std::string y0 = D == 3 ? "0.1, " : "", y1 = D == 3 ? "0.2, " : "";
+  return "shape = \"box\"\nmin = [" + num(x0) + ", " + y0 + num(z0) + "]\nmax = [" + num(x1) +
+         ", " + y1 + num(z1) + "]\n";
+}
+
+template <int D>
+void flush_box_rests(double offset, bool lower_is_body, Solid lower = Solid::Box,
+                     Solid upper = Solid::Box) {
   const std::string text =
       (D == 2 ? "dimension = 2\ngravity = [0.0, -9.81]\n[grid]\nsize = [1.0, 0.5]\n"
                 "resolution = [50, 25]\n"
               : "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n[grid]\nsize = [0.6, 0.3, 0.3]\n"
                 "resolution = [30, 15, 15]\n") +
-      std::string("[boundary]\ndefault = \"stick\"\n") + lower + upper +
-      (D == 2 ? kSpeck2D : kSpeck3D);
+      std::string("[boundary]\ndefault = \"stick\"\n[[obstacle]]\n") +
+      flush_solid<D>(lower, 0.2, 0.0, 0.3, 0.05) + (lower_is_body ? "density = 900\n" : "") +
+      "[[obstacle]]\n" + flush_solid<D>(upper, 0.2 + offset, 0.052, 0.3 + offset, 0.102) +
+      "density = 500\n" + (D == 2 ? kSpeck2D : kSpeck3D);
   Simulation<D> sim(parse_scene(text, "flush.toml"));
   run_until(sim, 1.0);
   const auto& o = sim.obstacles();
   const double h = sim.grid().h();
-  const double top = lower_is_body ? o[0].a[D - 1] + o[0].b[D - 1] : o[0].b[D - 1];
+  const double top = 0.05 + (lower_is_body ? o[0].a[D - 1] - 0.025 : 0.0);
   double low = 1e300, high = -1e300;
   for (const Vec<D>& c : body_points(o[1])) {
     low = std::min(low, c[D - 1]);
     high = std::max(high, c[D - 1]);
   }
   const double moved = std::abs(o[1].a[0] - (0.25 + offset));
-  std::cout << D << "D box " << offset << " m off flush on a "
-            << (lower_is_body ? "body" : "fixed box") << ": its corners " << (top - low) / h
-            << " and " << (top + 0.05 - high) / h << " cells under where they rest, moved "
-            << moved / h << " cells, speed " << o[1].velocity.norm() << " m/s\n";
+  std::cout << D << "D " << (upper == Solid::Box ? "box" : "polygon") << " " << offset
+            << " m off flush on a " << (lower == Solid::Box ? "box" : "polygon")
+            << (lower_is_body ? " body" : "") << ": its corners " << (top - low) / h << " and "
+            << (top + 0.05 - high) / h << " cells under where they rest, moved " << moved / h
+            << " cells, speed " << o[1].velocity.norm() << " m/s\n";
   EXPECT_LT(std::abs(low - top), 1e-3 * h);
   EXPECT_LT(std::abs(high - 0.05 - top), 1e-3 * h);  // level: its top 5 cm above
   EXPECT_LT(moved, 1e-3 * h);
@@ -551,6 +561,12 @@ void flush_box_rests(double offset, bool lower_is_body) {
 TEST(BoxBodies, BoxSetFlushOnABoxRestsOnIt2D) {
   for (const double offset : {0.0, 1e-5, 2e-3})
     for (const bool body : {false, true}) flush_box_rests<2>(offset, body);
+  for (const double offset : {0.0, 1e-5}) {
+    flush_box_rests<2>(offset, false, Solid::Box, Solid::Polygon);
+    flush_box_rests<2>(offset, true, Solid::Box, Solid::Polygon);
+    flush_box_rests<2>(offset, false, Solid::Polygon, Solid::Box);
+    flush_box_rests<2>(offset, true, Solid::Polygon, Solid::Polygon);
+  }
 }
 
 TEST(BoxBodies, BoxSetFlushOnABoxRestsOnIt3D) {

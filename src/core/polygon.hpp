@@ -94,6 +94,58 @@ class SolidPolygon {
     return in ? -dist : dist;
   }
 
+  // Edge i's outward unit normal (the corners' orientation decides which
+  // side is out; zero for an edge of zero length).
+  Point2 edge_normal(std::size_t i) const {
+    const Edge& e = edges_[i];
+    if (!(e.len2 > 0.0)) return {0.0, 0.0};
+    const double len = std::sqrt(e.len2), o = orientation() > 0.0 ? 1.0 : -1.0;
+    return {o * e.ey / len, -o * e.ex / len};
+  }
+
+  // Corner i's direction into the solid: minus the sum of the outward
+  // normals of the two edges that meet there.
+  Point2 corner_inward(std::size_t i) const {
+    const std::size_t n = edges_.size();
+    const Point2 a = edge_normal((i + n - 1) % n), b = edge_normal(i);
+    return {-(a[0] + b[0]), -(a[1] + b[1])};
+  }
+
+  // Where (x, y) lies within `slack` of the boundary near a corner, the
+  // edge whose outward normal best follows (tx, ty) among the edges within
+  // `slack` of it (physics/obstacle.hpp, box_face_towards, for why), ties
+  // (to round-off) going to the nearest: true, with the signed distance to
+  // that edge's line (negative on its inner side) and its normal. False
+  // where no edge does better than the nearest, signed_distance's answer
+  // then holding.
+  bool face_towards(double x, double y, double tx, double ty, double slack, double* distance,
+                    double* nx, double* ny) const {
+    double nearest2 = 1e300;
+    std::size_t nearest = 0;
+    for (std::size_t i = 0; i < edges_.size(); ++i) {
+      if (!(edges_[i].len2 > 0.0)) continue;  // a repeated corner: no normal of its own
+      const double d2 = segment_distance2(i, x, y);
+      if (d2 < nearest2) nearest2 = d2, nearest = i;
+    }
+    if (!(nearest2 <= slack * slack)) return false;
+    const double margin = 1e-9 * std::hypot(tx, ty);
+    const auto score = [&](std::size_t i) {
+      const Point2 m = edge_normal(i);
+      return m[0] * tx + m[1] * ty;
+    };
+    std::size_t best = nearest;
+    for (std::size_t i = 0; i < edges_.size(); ++i)
+      if (edges_[i].len2 > 0.0 && segment_distance2(i, x, y) <= slack * slack &&
+          score(i) > score(best) + margin)
+        best = i;
+    if (best == nearest) return false;
+    const Point2 m = edge_normal(best);
+    *nx = m[0];
+    *ny = m[1];
+    *distance = m[0] * (x - edges_[best].ax) + m[1] * (y - edges_[best].ay);
+    return true;
+  }
+
   // Twice the signed area: positive for counter-clockwise corners.
   double orientation() const {
     double a = 0.0;
@@ -107,6 +159,14 @@ class SolidPolygon {
   const Point2& upper() const { return hi_; }
 
  private:
+  // Squared distance from (x, y) to edge i (of nonzero length).
+  double segment_distance2(std::size_t i, double x, double y) const {
+    const Edge& e = edges_[i];
+    const double t = std::clamp(((x - e.ax) * e.ex + (y - e.ay) * e.ey) / e.len2, 0.0, 1.0);
+    const double px = e.ax + t * e.ex - x, py = e.ay + t * e.ey - y;
+    return px * px + py * py;
+  }
+
   struct Edge {
     double ax, ay, by, ex, ey, len2;  // start corner, end's y, corner to corner, squared length
   };

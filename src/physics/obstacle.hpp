@@ -367,25 +367,37 @@ inline bool box_face_towards(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x
   return true;
 }
 
-// The direction from box o's corner c (bit k set: the upper side on axis k,
-// as body_points and the fixed corners number them) into the box: minus the
-// sum of its faces' outward normals there.
+// The direction from corner c of solid o into it, where o has corners:
+// a box's (bit k of c set: the upper side on axis k, as body_points and the
+// fixed corners number them) or a polygon's (in the order of its corners),
+// minus the sum of the outward normals of its faces there. False for other
+// shapes.
 template <int D>
-inline Vec<D> box_corner_inward(const Obstacle<D>& o, int c) {
+inline bool corner_inward(const Obstacle<D>& o, int c, Vec<D>* inward) {
   Vec<D> s;
-  for (int k = 0; k < D; ++k) s[k] = (c >> k & 1) ? -1.0 : 1.0;
-  return o.posed ? Vec<D>(o.rotation * s) : s;
+  if (o.shape == ObstacleShape::Box) {
+    for (int k = 0; k < D; ++k) s[k] = (c >> k & 1) ? -1.0 : 1.0;
+  } else if constexpr (D == 2) {
+    if (o.shape != ObstacleShape::Polygon) return false;
+    const auto m = o.polygon->corner_inward(static_cast<std::size_t>(c));
+    s = Vec<D>(m[0], m[1]);
+  } else {
+    return false;
+  }
+  *inward = o.posed ? Vec<D>(o.rotation * s) : s;
+  return true;
 }
 
-// How near (in cells) a box's corner must come to another box's edge or
+// How near (in cells) a corner must come to a box's or polygon's edge or
 // corner for corner_distance to choose the face: far beyond round-off, and
 // small enough that a corner overhanging a box's edge by less is held as if
 // it were on the face (a support wider by at most this).
 inline constexpr double kCornerSlack = 0.05;
 
-// signed_distance for a box corner, `towards` its inward direction
-// (box_corner_inward), against solid o: where o is a box, the face chosen by
-// box_face_towards within `slack` of its edges and corners; else, and
+// signed_distance for a corner of a box or polygon, `towards` its inward
+// direction (corner_inward), against solid o: where o is a box or a
+// polygon, the face chosen by box_face_towards or SolidPolygon::
+// face_towards within `slack` of its edges and corners; else, and
 // elsewhere, signed_distance.
 template <int D>
 inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* normal);
@@ -401,6 +413,18 @@ inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D
       const Vec<D> dir = o.rotation.transpose() * towards;
       if (box_face_towards<D>(Vec<D>(-o.b), o.b, local, dir, slack, &d, normal)) {
         *normal = o.rotation * *normal;
+        return d;
+      }
+    }
+  }
+  if constexpr (D == 2) {
+    if (!o.gone && o.shape == ObstacleShape::Polygon) {
+      // The solid as the scene gave it, where x is (signed_distance).
+      const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
+      const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
+      double d, nx, ny;
+      if (o.polygon->face_towards(p[0], p[1], t[0], t[1], slack, &d, &nx, &ny)) {
+        *normal = o.posed ? Vec<D>(o.rotation * Vec<D>(nx, ny)) : Vec<D>(nx, ny);
         return d;
       }
     }

@@ -185,11 +185,13 @@ void Simulation<D>::transfer_to_grid(double dt) {
       const int n_points = touch_points(o, points);
       for (int t = 0; t < n_points; ++t) {
         Vec<D> out;  // from the solid towards the point
-        // A box's corner: the face of a box it meets chosen by its own
-        // direction where it sits at that box's edge (corner_distance).
+        // A box's or polygon's corner: the face of a box or polygon it meets
+        // chosen by its own direction where it sits at that solid's edge
+        // (corner_distance).
+        Vec<D> inward;
         const double distance =
-            o.shape == ObstacleShape::Box
-                ? corner_distance(q, points[t].at, box_corner_inward(o, t), kCornerSlack * h, &out)
+            corner_inward(o, t, &inward)
+                ? corner_distance(q, points[t].at, inward, kCornerSlack * h, &out)
                 : signed_distance(q, points[t].at, &out);
         const double gap = distance - points[t].reach;
         if (gap >= h) continue;
@@ -255,11 +257,10 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const double reach = bounding_radius(o) + h + further;
         if ((x - o.a).squaredNorm() >= reach * reach) continue;
         Vec<D> n;  // the body's outward normal
-        const double from_point =
-            q.shape == ObstacleShape::Box
-                ? corner_distance(o, x, box_corner_inward(q, static_cast<int>(t)), kCornerSlack * h,
-                                  &n)
-                : signed_distance(o, x, &n);
+        Vec<D> inward;
+        const double from_point = corner_inward(q, static_cast<int>(t), &inward)
+                                      ? corner_distance(o, x, inward, kCornerSlack * h, &n)
+                                      : signed_distance(o, x, &n);
         const double distance = from_point - further;
         if (distance >= h) continue;
         const std::int64_t key = static_cast<std::int64_t>(s) * count +
