@@ -504,17 +504,25 @@ TEST(BoxBodies, BoxRestsOnAMeshApex3D) {
 // the top. Static equilibrium (face on face): it rests with its bottom on
 // the lower box's top, level, to 1e-3 of a cell, and does not move
 // sideways. In 2D also as polygons (the same squares' corners), either
-// one or both. Measured before the corners chose their face by their own
+// one or both; in 3D as meshes (the boxes' triangles) on a fixed box or
+// mesh, and a box on a fixed mesh. Measured before the corners chose their face by their own
 // direction (obstacle.hpp, corner_distance): the upper box sank 0.07 to
 // 0.6 of a cell into the lower one (2 cm cells) and, 10 um off flush on a
-// box body in 3D, fell through it to the floor; polygons 0.14 to 0.53.
+// box body in 3D, fell through it to the floor; polygons 0.14 to 0.53,
+// meshes 0.001 to 0.25 (a mesh's sampled distance rounds its corners).
 // Also a box overhanging the lower one by a tenth of a cell (beyond
 // kCornerSlack: its overhanging corners meet the lower box's edge, and
 // the lower box's corners its face).
-enum class Solid { Box, Polygon };
+enum class Solid { Box, Polygon, Mesh };
 
 template <int D>
 std::string flush_solid(Solid shape, double x0, double z0, double x1, double z1) {
+  if (shape == Solid::Mesh) {  // 3D only: the box as a triangle mesh, in a file
+    static int files = 0;
+    const std::filesystem::path obj = test::temp_path("flush_" + std::to_string(files++), ".obj");
+    test::write_obj(obj, {test::box_mesh({x0, 0.1, z0}, {x1, 0.2, z1})});
+    return "shape = \"mesh\"\nfile = \"" + obj.string() + "\"\n";
+  }
   if (shape == Solid::Polygon)  // 2D only
     return "shape = \"polygon\"\nvertices = [[" + num(x0) + ", " + num(z0) + "], [" + num(x1) +
            ", " + num(z0) + "], [" + num(x1) + ", " + num(z1) + "], [" + num(x0) + ", " + num(z1) +
@@ -547,8 +555,10 @@ void flush_box_rests(double offset, bool lower_is_body, Solid lower = Solid::Box
     high = std::max(high, c[D - 1]);
   }
   const double moved = std::abs(o[1].a[0] - (0.25 + offset));
-  std::cout << D << "D " << (upper == Solid::Box ? "box" : "polygon") << " " << offset
-            << " m off flush on a " << (lower == Solid::Box ? "box" : "polygon")
+  const auto name = [](Solid x) {
+    return x == Solid::Box ? "box" : x == Solid::Polygon ? "polygon" : "mesh";
+  };
+  std::cout << D << "D " << name(upper) << " " << offset << " m off flush on a " << name(lower)
             << (lower_is_body ? " body" : "") << ": its corners " << (top - low) / h << " and "
             << (top + 0.05 - high) / h << " cells under where they rest, moved " << moved / h
             << " cells, speed " << o[1].velocity.norm() << " m/s\n";
@@ -572,6 +582,11 @@ TEST(BoxBodies, BoxSetFlushOnABoxRestsOnIt2D) {
 TEST(BoxBodies, BoxSetFlushOnABoxRestsOnIt3D) {
   for (const double offset : {0.0, 1e-5, 2e-3})
     for (const bool body : {false, true}) flush_box_rests<3>(offset, body);
+  for (const double offset : {0.0, 1e-5}) {
+    flush_box_rests<3>(offset, false, Solid::Box, Solid::Mesh);
+    flush_box_rests<3>(offset, false, Solid::Mesh, Solid::Box);
+    flush_box_rests<3>(offset, false, Solid::Mesh, Solid::Mesh);
+  }
 }
 
 }  // namespace

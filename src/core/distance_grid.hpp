@@ -67,6 +67,9 @@ class DistanceGrid {
   // Allocates nothing.
   double signed_distance(const Point3& p, Point3* normal) const;
 
+  // The mesh it samples (its exact queries).
+  const SolidMesh& mesh() const { return *mesh_; }
+
   // How many cells of the sampling grid take the exact distance, and
   // whether p lies in one.
   std::int64_t exact_cells() const;

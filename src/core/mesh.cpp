@@ -138,8 +138,11 @@ std::size_t open_edge_count(const TriangleMesh& mesh) {
   return open;
 }
 
-std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
-  // Each triangle's unit normal, turned outward by the sign of the volume.
+namespace {
+
+// Each triangle's unit normal, turned outward by the sign of the volume
+// (zero for a degenerate triangle).
+std::vector<Point3> outward_normals(const TriangleMesh& mesh) {
   const auto& v = mesh.vertices;
   double six_v = 0.0;
   for (const auto& t : mesh.triangles) six_v += dot(v[t[0]], cross(v[t[1]], v[t[2]]));
@@ -152,6 +155,35 @@ std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
     normal.push_back(len > 0.0 ? Point3{side * n[0] / len, side * n[1] / len, side * n[2] / len}
                                : Point3{0, 0, 0});
   }
+  return normal;
+}
+
+}  // namespace
+
+std::vector<Point3> vertex_normals(const TriangleMesh& mesh) {
+  const auto& v = mesh.vertices;
+  const std::vector<Point3> normal = outward_normals(mesh);
+  std::vector<Point3> out(v.size(), Point3{0, 0, 0});
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto& t = mesh.triangles[f];
+      const Point3 a = sub(v[t[(k + 1) % 3]], v[t[k]]), b = sub(v[t[(k + 2) % 3]], v[t[k]]);
+      const double la = norm(a), lb = norm(b);
+      if (!(la > 0.0 && lb > 0.0)) continue;
+      const double angle = std::acos(std::clamp(dot(a, b) / (la * lb), -1.0, 1.0));
+      for (int c = 0; c < 3; ++c) out[t[k]][c] += angle * normal[f][c];
+    }
+  for (Point3& n : out) {
+    const double len = norm(n);
+    if (len > 0.0)
+      for (double& c : n) c /= len;
+  }
+  return out;
+}
+
+std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
+  const auto& v = mesh.vertices;
+  const std::vector<Point3> normal = outward_normals(mesh);
   // (edge key, triangle, corner opposite the edge), sorted by key.
   struct Side {
     std::uint64_t key;
@@ -204,6 +236,7 @@ SolidMesh::SolidMesh(const TriangleMesh& mesh) {
   double six_v = 0.0;  // divergence theorem: V = sum a.(b x c) / 6
   for (const Tri& t : tri_) six_v += dot(t.a, cross(t.b, t.c));
   volume_ = std::abs(six_v) / 6.0;
+  outward_ = six_v < 0.0 ? -1.0 : 1.0;
   if (!tri_.empty()) build(0, static_cast<std::int32_t>(tri_.size()), 0);
 }
 
@@ -351,6 +384,61 @@ double SolidMesh::distance(const Point3& p, Point3* closest, double limit) const
   }
   if (closest && found) *closest = nearest;
   return best;
+}
+
+bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slack, double reach,
+                             double* distance, Point3* normal) const {
+  if (nodes_.empty()) return false;
+  const auto unit_normal = [&](const Tri& t) {
+    const Point3 n = cross(sub(t.b, t.a), sub(t.c, t.a));
+    const double len = norm(n);
+    return len > 0.0 ? Point3{outward_ * n[0] / len, outward_ * n[1] / len, outward_ * n[2] / len}
+                     : Point3{0, 0, 0};
+  };
+  // Each level pops one entry and pushes at most two (as distance()).
+  constexpr std::size_t kStack = 128;
+  std::array<std::int32_t, kStack> stack;
+  std::size_t top = 0;
+  stack[top++] = 0;
+  double nearest2 = HUGE_VAL, nearest_score = 0.0, best_score = -HUGE_VAL;
+  std::int32_t nearest = -1, best = -1;
+  Point3 nearest_point{};
+  const double reach2 = reach * reach, slack2 = slack * slack;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (norm(sub(p, n.centre)) - n.radius > reach) continue;
+    if (n.left >= 0) {
+      assert(top + 2 <= kStack);
+      stack[top++] = n.right;
+      stack[top++] = n.left;
+      continue;
+    }
+    for (std::int32_t k = n.first; k < n.first + n.count; ++k) {
+      const Tri& t = tri_[k];
+      const Point3 q = closest_on_triangle(p, t.a, t.b, t.c);
+      const double d2 = distance2(p, q);
+      if (!(d2 <= reach2)) continue;
+      const double score = dot(unit_normal(t), towards);
+      if (d2 < nearest2) nearest2 = d2, nearest_score = score, nearest = k, nearest_point = q;
+      if (d2 <= slack2 && score > best_score) best_score = score, best = k;
+    }
+  }
+  if (nearest < 0) return false;
+  if (nearest2 > slack2) {
+    // Off the surface by more than `slack`: the exact distance to the
+    // nearest point, on the side the nearest triangle's plane gives.
+    const Point3 m = unit_normal(tri_[nearest]);
+    const Point3 d = sub(p, nearest_point);
+    const double len = std::sqrt(nearest2), side = dot(m, d) < 0.0 ? -1.0 : 1.0;
+    *normal = len > 0.0 ? Point3{side * d[0] / len, side * d[1] / len, side * d[2] / len} : m;
+    *distance = side * len;
+    return true;
+  }
+  // Better by more than round-off: equal scores keep the nearest face.
+  const std::int32_t face = best_score > nearest_score + 1e-9 * norm(towards) ? best : nearest;
+  *normal = unit_normal(tri_[face]);
+  *distance = dot(*normal, sub(p, tri_[face].a));
+  return true;
 }
 
 }  // namespace sablier

@@ -65,6 +65,11 @@ struct FeatureEdge {
 // it is oriented. Edges not shared by exactly two triangles are skipped.
 std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh);
 
+// Each vertex's outward unit normal: the mean of its triangles' outward
+// normals weighted by their angles there (Thurmer & Wuthrich 1998), outward
+// by the signed volume as for feature_edges; zero where they cancel.
+std::vector<Point3> vertex_normals(const TriangleMesh& mesh);
+
 // The point of triangle (a, b, c) nearest p, and the part of the triangle
 // it lies on (a vertex, the inside of an edge, or the inside of the face).
 enum class TriangleFeature : unsigned char {
@@ -102,6 +107,20 @@ class SolidMesh {
   // points far from the surface cost almost nothing.
   double distance(const Point3& p, Point3* closest = nullptr, double limit = HUGE_VAL) const;
 
+  // The distance from p to the surface, exact, for a corner of another
+  // solid `towards` which that solid lies (physics/obstacle.hpp,
+  // corner_distance), where p lies within `reach` of the surface (false
+  // beyond). Within `slack` of it: the signed distance from a triangle's
+  // plane (negative on its inner side) and its outward normal, of the
+  // triangle within `slack` of p whose normal best follows `towards` where
+  // it does better than the nearest triangle's (by more than round-off),
+  // else of the nearest: a corner at an edge or corner of the mesh takes
+  // the face it points into. Beyond `slack`: the distance to the nearest
+  // point, on the side of the nearest triangle's plane, and the direction
+  // from that point.
+  bool face_towards(const Point3& p, const Point3& towards, double slack, double reach,
+                    double* distance, Point3* normal) const;
+
   const Point3& lower() const { return lo_; }
   const Point3& upper() const { return hi_; }
   double volume() const { return volume_; }  // enclosed volume, m^3 (by the divergence theorem)
@@ -128,6 +147,7 @@ class SolidMesh {
   std::vector<Tri> tri_;
   std::vector<Node> nodes_;
   Point3 lo_{}, hi_{};
+  double outward_ = 1.0;  // the triangles' orientation: +1 if (b - a) x (c - a) points out
   double volume_ = 0.0;
 };
 

@@ -34,6 +34,9 @@ struct Obstacle {
   // 3D meshes: the convex edges of the solid as the scene gave it (`points`'
   // frame for a body, less `a` for a fixed mesh), for edge contacts (edges.hpp).
   std::shared_ptr<const std::vector<FeatureEdge>> edges;
+  // 3D meshes with `points`: each point's direction into the solid (minus
+  // its vertex normal, core/mesh.hpp), in `points`' frame (corner_inward).
+  std::shared_ptr<const std::vector<Vec<D>>> inward;
   double mu = 0.5;                   // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
   double until = 1e300;              // s: taken away from this time on (scene's obstacle[].until)
@@ -150,6 +153,15 @@ inline MassProperties body_mass_properties(const ObstacleConfig& c) {
   return mesh_mass_properties(*c.surface);
 }
 
+// A mesh's vertices' directions into its solid (Obstacle::inward).
+template <int D>
+std::shared_ptr<const std::vector<Vec<D>>> mesh_inward(const TriangleMesh& surface) {
+  auto out = std::make_shared<std::vector<Vec<D>>>();
+  if constexpr (D == 3)
+    for (const Point3& n : vertex_normals(surface)) out->push_back(-Vec<D>(n[0], n[1], n[2]));
+  return out;
+}
+
 template <int D>
 Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   Obstacle<D> o;
@@ -184,6 +196,7 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
       auto points = std::make_shared<std::vector<Vec<D>>>();
       for (const Point3& p : c.surface->vertices) points->push_back(Vec<D>(p[0], p[1], p[2]));
       o.points = std::move(points);
+      o.inward = mesh_inward<D>(*c.surface);
     }
   if (c.shape == ObstacleShape::Plane) o.b.normalize();
   o.radius = c.radius;
@@ -231,6 +244,7 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
         for (const auto& p : c.polygon->corners()) points->push_back(Vec<D>(p[0], p[1]));
       } else {
         for (const Point3& p : c.surface->vertices) points->push_back(Vec<D>(p[0], p[1], p[2]));
+        o.inward = mesh_inward<D>(*c.surface);
       }
       for (int k = 0; k < D; ++k) {
         o.b[k] = c.centroid[k];
@@ -370,8 +384,8 @@ inline bool box_face_towards(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x
 // The direction from corner c of solid o into it, where o has corners:
 // a box's (bit k of c set: the upper side on axis k, as body_points and the
 // fixed corners number them) or a polygon's (in the order of its corners),
-// minus the sum of the outward normals of its faces there. False for other
-// shapes.
+// minus the sum of the outward normals of its faces there; a mesh's vertex
+// c, minus its vertex normal. False for other shapes.
 template <int D>
 inline bool corner_inward(const Obstacle<D>& o, int c, Vec<D>* inward) {
   Vec<D> s;
@@ -382,28 +396,32 @@ inline bool corner_inward(const Obstacle<D>& o, int c, Vec<D>* inward) {
     const auto m = o.polygon->corner_inward(static_cast<std::size_t>(c));
     s = Vec<D>(m[0], m[1]);
   } else {
-    return false;
+    if (o.shape != ObstacleShape::Mesh || !o.inward) return false;
+    s = (*o.inward)[static_cast<std::size_t>(c)];
   }
   *inward = o.posed ? Vec<D>(o.rotation * s) : s;
   return true;
 }
 
-// How near (in cells) a corner must come to a box's or polygon's edge or
-// corner for corner_distance to choose the face: far beyond round-off, and
+// How near (in cells) a corner must come to a solid's edge or corner for
+// corner_distance to choose the face: far beyond round-off, and
 // small enough that a corner overhanging a box's edge by less is held as if
 // it were on the face (a support wider by at most this).
 inline constexpr double kCornerSlack = 0.05;
 
-// signed_distance for a corner of a box or polygon, `towards` its inward
-// direction (corner_inward), against solid o: where o is a box or a
-// polygon, the face chosen by box_face_towards or SolidPolygon::
-// face_towards within `slack` of its edges and corners; else, and
-// elsewhere, signed_distance.
+// signed_distance for a corner of a box, polygon or mesh, `towards` its
+// inward direction (corner_inward), against solid o: where o is a box, a
+// polygon or a mesh, the face chosen by box_face_towards, SolidPolygon::
+// face_towards or SolidMesh::face_towards (exact, where the sampled
+// distance rounds the mesh's edges) within kCornerSlack cells (h the
+// cell size) of its edges and corners, and for a mesh its exact distance
+// within a cell; else, and elsewhere, signed_distance.
 template <int D>
 inline double signed_distance(const Obstacle<D>& o, const Vec<D>& x, Vec<D>* normal);
 template <int D>
 inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D>& towards,
-                              double slack, Vec<D>* normal) {
+                              double h, Vec<D>* normal) {
+  const double slack = kCornerSlack * h;
   if (!o.gone && o.shape == ObstacleShape::Box) {
     double d;
     if (!o.posed) {
@@ -413,6 +431,24 @@ inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D
       const Vec<D> dir = o.rotation.transpose() * towards;
       if (box_face_towards<D>(Vec<D>(-o.b), o.b, local, dir, slack, &d, normal)) {
         *normal = o.rotation * *normal;
+        return d;
+      }
+    }
+  }
+  if constexpr (D == 3) {
+    if (!o.gone && o.shape == ObstacleShape::Mesh && o.distance) {
+      // The solid as the scene gave it, where x is (signed_distance).
+      const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
+      const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
+      double d;
+      Point3 m;
+      // Exact within a cell (the rows' reach): the sampled distance rounds
+      // the mesh's corners over about a sample, and a corner landing on one
+      // would find it nearer than its gap said (DistanceGrid).
+      if (o.distance->mesh().face_towards({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, slack, h,
+                                          &d, &m)) {
+        const Vec<D> n(m[0], m[1], m[2]);
+        *normal = o.posed ? Vec<D>(o.rotation * n) : n;
         return d;
       }
     }

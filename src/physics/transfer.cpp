@@ -191,7 +191,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         Vec<D> inward;
         const double distance =
             corner_inward(o, t, &inward)
-                ? corner_distance(q, points[t].at, inward, kCornerSlack * h, &out)
+                ? corner_distance(q, points[t].at, inward, h, &out)
                 : signed_distance(q, points[t].at, &out);
         const double gap = distance - points[t].reach;
         if (gap >= h) continue;
@@ -259,7 +259,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         Vec<D> n;  // the body's outward normal
         Vec<D> inward;
         const double from_point = corner_inward(q, static_cast<int>(t), &inward)
-                                      ? corner_distance(o, x, inward, kCornerSlack * h, &n)
+                                      ? corner_distance(o, x, inward, h, &n)
                                       : signed_distance(o, x, &n);
         const double distance = from_point - further;
         if (distance >= h) continue;
