@@ -378,6 +378,48 @@ TEST(EdgeContacts, TurnedBoxRestsOnAMeshRidgeEdgeToEdge) {
   expect_rests(r, 1);
 }
 
+// Edge along edge: the same square beam turned 45 degrees about its own
+// long axis, laid lengthwise along the ridge of a fixed mesh (the ridge
+// turned `yaw` about z: parallel, and within the milliradian below which
+// the edge rows take two edges as parallel and leave them to their ends),
+// 16 cm long (its ends on the ridge) or 26 cm (beyond the ridge's 20 cm).
+// Statics: it rests balanced on the ridge, its lowest point at the ridge's
+// top. Before the corners chose the normal of the ridge's cone that faces
+// them (obstacle.hpp, corner_distance: here the ridge edge's bisector, up)
+// their rows took one slope's normal or the sampled distance's rounded
+// one: the beams sank 0.13-0.17 of a cell or rolled off the ridge.
+void rests_along_a_ridge(double yaw, double length) {
+  const fs::path dir = test::temp_dir("ridge_along"), obj = dir / "ridge.obj";
+  TriangleMesh ridge = test::box_mesh({-0.03, -0.1, -0.03}, {0.03, 0.1, 0.03});
+  const double c = std::sqrt(0.5), cy = std::cos(yaw), sy = std::sin(yaw);
+  double top = -1e300;
+  for (Point3& p : ridge.vertices) {
+    const double x = c * (p[0] + p[2]), y = p[1], z = c * (p[2] - p[0]);
+    p = {0.3 + cy * x - sy * y, 0.15 + sy * x + cy * y, 0.05 + z};
+    top = std::max(top, p[2]);
+  }
+  write_exact_obj(obj, ridge);
+  const double z = top + 0.03 * std::sqrt(2.0) + 0.002;
+  const std::string text = kRoom + "[[obstacle]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
+                           "\"\n[[obstacle]]\nshape = \"box\"\nmin = [0.27, " +
+                           num(0.15 - length / 2) + ", " + num(z - 0.03) + "]\nmax = [0.33, " +
+                           num(0.15 + length / 2) + ", " + num(z + 0.03) +
+                           "]\ndensity = 500\nangle = 45\naxis = [0, 1, 0]\n";
+  Simulation<3> sim(parse_scene(text, "ridge_along.toml"));
+  fs::remove_all(dir);
+  const Rest r =
+      rest_on_edges(sim, 1, top, -1, "beam " + num(length) + " m along a ridge turned " + num(yaw));
+  EXPECT_LT(std::abs(r.depth), 1e-3);
+  EXPECT_LT(r.speed, 1e-3);
+  EXPECT_LT(r.spin, 1e-3);
+  EXPECT_LT(r.force_error, 1e-3);
+}
+
+TEST(EdgeContacts, BeamRestsLengthwiseAlongAMeshRidge) {
+  for (const double yaw : {0.0, 5e-4, 2e-3})
+    for (const double length : {0.16, 0.26}) rests_along_a_ridge(yaw, length);
+}
+
 // Body on body: the plank across a beam that is itself a body (2000 kg/m^3)
 // resting on the floor. The plank's four edge rows hold it against the
 // beam; the beam at rest too, the net force of its rows (the floor's up,

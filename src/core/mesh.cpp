@@ -400,9 +400,16 @@ bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slac
   std::array<std::int32_t, kStack> stack;
   std::size_t top = 0;
   stack[top++] = 0;
-  double nearest2 = HUGE_VAL, nearest_score = 0.0, best_score = -HUGE_VAL;
-  std::int32_t nearest = -1, best = -1;
+  double nearest2 = HUGE_VAL;
+  std::int32_t nearest = -1;
   Point3 nearest_point{};
+  // The distinct face normals within `slack` facing `towards` (coplanar
+  // triangles count once, so that how a face is split does not weigh),
+  // their weights and plane distances.
+  constexpr int kFaces = 16;
+  std::array<Point3, kFaces> face_normal;
+  std::array<double, kFaces> face_weight, face_plane;
+  int faces = 0;
   const double reach2 = reach * reach, slack2 = slack * slack;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
@@ -418,9 +425,17 @@ bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slac
       const Point3 q = closest_on_triangle(p, t.a, t.b, t.c);
       const double d2 = distance2(p, q);
       if (!(d2 <= reach2)) continue;
-      const double score = dot(unit_normal(t), towards);
-      if (d2 < nearest2) nearest2 = d2, nearest_score = score, nearest = k, nearest_point = q;
-      if (d2 <= slack2 && score > best_score) best_score = score, best = k;
+      if (d2 < nearest2) nearest2 = d2, nearest = k, nearest_point = q;
+      if (!(d2 <= slack2)) continue;
+      const Point3 m = unit_normal(t);
+      const double w = dot(m, towards);
+      if (!(w > 0.0)) continue;
+      bool seen = false;
+      for (int f = 0; f < faces && !seen; ++f) seen = distance2(face_normal[f], m) < 1e-18;
+      if (seen || faces == kFaces) continue;
+      face_normal[faces] = m;
+      face_weight[faces] = w;
+      face_plane[faces++] = dot(m, sub(p, t.a));
     }
   }
   if (nearest < 0) return false;
@@ -434,10 +449,22 @@ bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slac
     *distance = side * len;
     return true;
   }
-  // Better by more than round-off: equal scores keep the nearest face.
-  const std::int32_t face = best_score > nearest_score + 1e-9 * norm(towards) ? best : nearest;
-  *normal = unit_normal(tri_[face]);
-  *distance = dot(*normal, sub(p, tri_[face].a));
+  // The normals facing the corner, weighted as box_face_towards weighs a
+  // box's (physics/obstacle.hpp); none facing it: the nearest triangle's.
+  Point3 sum{0, 0, 0};
+  double wd = 0.0;
+  for (int f = 0; f < faces; ++f) {
+    for (int c = 0; c < 3; ++c) sum[c] += face_weight[f] * face_normal[f][c];
+    wd += face_weight[f] * face_plane[f];
+  }
+  const double len = norm(sum);
+  if (len > 0.0) {
+    *normal = {sum[0] / len, sum[1] / len, sum[2] / len};
+    *distance = wd / len;
+  } else {
+    *normal = unit_normal(tri_[nearest]);
+    *distance = dot(*normal, sub(p, tri_[nearest].a));
+  }
   return true;
 }
 

@@ -110,14 +110,15 @@ class SolidMesh {
   // The distance from p to the surface, exact, for a corner of another
   // solid `towards` which that solid lies (physics/obstacle.hpp,
   // corner_distance), where p lies within `reach` of the surface (false
-  // beyond). Within `slack` of it: the signed distance from a triangle's
-  // plane (negative on its inner side) and its outward normal, of the
-  // triangle within `slack` of p whose normal best follows `towards` where
-  // it does better than the nearest triangle's (by more than round-off),
-  // else of the nearest: a corner at an edge or corner of the mesh takes
-  // the face it points into. Beyond `slack`: the distance to the nearest
-  // point, on the side of the nearest triangle's plane, and the direction
-  // from that point.
+  // beyond). Within `slack` of it: the normal of the mesh's cone there (the
+  // distinct normals of the triangles within `slack` of p) that follows
+  // `towards`, as box_face_towards finds a box's (the normals weighted by
+  // max(0, n . towards), summed and normalised; the nearest triangle's if
+  // none faces it), and the same sum of their planes' signed distances
+  // (negative on the inner side): a corner at an edge or corner of the mesh
+  // takes the face it points into, or the edge's bisector. Beyond `slack`:
+  // the distance to the nearest point, on the side of the nearest
+  // triangle's plane, and the direction from that point.
   bool face_towards(const Point3& p, const Point3& towards, double slack, double reach,
                     double* distance, Point3* normal) const;
 

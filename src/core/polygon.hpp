@@ -112,12 +112,13 @@ class SolidPolygon {
   }
 
   // Where (x, y) lies within `slack` of the boundary near a corner, the
-  // edge whose outward normal best follows (tx, ty) among the edges within
-  // `slack` of it (physics/obstacle.hpp, box_face_towards, for why), ties
-  // (to round-off) going to the nearest: true, with the signed distance to
-  // that edge's line (negative on its inner side) and its normal. False
-  // where no edge does better than the nearest, signed_distance's answer
-  // then holding.
+  // normal of the polygon's cone there (its edges within `slack` of the
+  // point) that follows (tx, ty), as physics/obstacle.hpp's
+  // box_face_towards finds it: the sum of the edges' normals weighted by
+  // max(0, n . t), normalised, and the same sum of their lines' signed
+  // distances (negative on the inner side). True with those; false where
+  // the point is farther, only the nearest edge faces t, or none does
+  // (signed_distance's answer then holding).
   bool face_towards(double x, double y, double tx, double ty, double slack, double* distance,
                     double* nx, double* ny) const {
     double nearest2 = 1e300;
@@ -128,21 +129,25 @@ class SolidPolygon {
       if (d2 < nearest2) nearest2 = d2, nearest = i;
     }
     if (!(nearest2 <= slack * slack)) return false;
-    const double margin = 1e-9 * std::hypot(tx, ty);
-    const auto score = [&](std::size_t i) {
+    double sx = 0.0, sy = 0.0, wd = 0.0;
+    int faces = 0;
+    bool nearest_faces = false;
+    for (std::size_t i = 0; i < edges_.size(); ++i) {
+      if (!(edges_[i].len2 > 0.0) || !(segment_distance2(i, x, y) <= slack * slack)) continue;
       const Point2 m = edge_normal(i);
-      return m[0] * tx + m[1] * ty;
-    };
-    std::size_t best = nearest;
-    for (std::size_t i = 0; i < edges_.size(); ++i)
-      if (edges_[i].len2 > 0.0 && segment_distance2(i, x, y) <= slack * slack &&
-          score(i) > score(best) + margin)
-        best = i;
-    if (best == nearest) return false;
-    const Point2 m = edge_normal(best);
-    *nx = m[0];
-    *ny = m[1];
-    *distance = m[0] * (x - edges_[best].ax) + m[1] * (y - edges_[best].ay);
+      const double w = m[0] * tx + m[1] * ty;
+      if (!(w > 0.0)) continue;
+      sx += w * m[0];
+      sy += w * m[1];
+      wd += w * (m[0] * (x - edges_[i].ax) + m[1] * (y - edges_[i].ay));
+      ++faces;
+      nearest_faces = nearest_faces || i == nearest;
+    }
+    const double len = std::hypot(sx, sy);
+    if (!(len > 0.0) || (faces == 1 && nearest_faces)) return false;
+    *nx = sx / len;
+    *ny = sy / len;
+    *distance = wd / len;
     return true;
   }
 

@@ -345,17 +345,21 @@ inline double box_distance(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x, 
   return q[axis];
 }
 
-// A box corner meeting a box at (or within `slack` of) one of its edges or
-// corners: box_distance's nearest face is then a matter of round-off (a
-// crate set flush on another: its corners on the other's top edges, a side
-// face as near as the top), and a side face's normal lets the corner sink.
-// Here the face is the one among those within `slack` of the nearest whose
-// outward normal n best follows `towards` (the corner's own inward
-// direction: a contact normal that points out of the box and into the
-// corner's solid, inside both solids' normal cones), ties (to round-off)
-// going to the nearest. Returns the distance along that face's normal (negative inside
-// it); false, with nothing written, where the point is over `slack` outside
-// any face or no other face does better, box_distance's answer then holding.
+// A corner of another solid meeting a box at (or within `slack` of) one of
+// its edges or corners: box_distance's nearest face is then a matter of
+// round-off (a crate set flush on another: its corners on the other's top
+// edges, a side face as near as the top), and a side face's normal lets
+// the corner sink. The contact normal belongs in both solids' normal cones;
+// here it is the one of the box's cone there (its faces within `slack` of
+// the nearest) that best follows `towards`, the corner's own direction into
+// its solid: for faces with orthogonal normals n_k the maximiser of n .
+// towards is the sum of w_k n_k, w_k = max(0, n_k . towards), normalised (a
+// corner on a corner of the same orientation: the one face facing it; a
+// beam's edge along a box's edge: the edge's bisector). The distance is
+// the same sum of the faces' plane distances (that of the plane through the
+// edge or corner across the normal). Returns false, with nothing written,
+// where the point is over `slack` outside any face, or only the nearest
+// face faces the corner, or none does: box_distance's answer then holds.
 template <int D>
 inline bool box_face_towards(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x,
                              const Vec<D>& towards, double slack, double* distance,
@@ -366,18 +370,21 @@ inline bool box_face_towards(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x
   int nearest = 0;
   for (int k = 1; k < D; ++k)
     if (q[k] > q[nearest]) nearest = k;
-  const auto side = [&](int k) { return x[k] < centre[k] ? -1.0 : 1.0; };
-  // Better by more than round-off (a turned corner's direction is rounded):
-  // equal scores keep the nearest face.
-  const double margin = 1e-9 * towards.norm();
-  int best = nearest;
-  for (int k = 0; k < D; ++k)
-    if (q[k] >= q[nearest] - slack && side(k) * towards[k] > side(best) * towards[best] + margin)
-      best = k;
-  if (best == nearest) return false;
-  *normal = Vec<D>::Zero();
-  (*normal)[best] = side(best);
-  *distance = q[best];
+  Vec<D> n = Vec<D>::Zero();
+  double wq = 0.0;
+  int faces = 0;
+  for (int k = 0; k < D; ++k) {
+    const double side = x[k] < centre[k] ? -1.0 : 1.0, w = side * towards[k];
+    if (q[k] >= q[nearest] - slack && w > 0.0) {
+      n[k] = side * w;
+      wq += w * q[k];
+      ++faces;
+    }
+  }
+  const double len = n.norm();
+  if (!(len > 0.0) || (faces == 1 && n[nearest] != 0.0)) return false;
+  *normal = n / len;
+  *distance = wq / len;
   return true;
 }
 
@@ -407,7 +414,7 @@ inline bool corner_inward(const Obstacle<D>& o, int c, Vec<D>* inward) {
 // corner_distance to choose the face: far beyond round-off, and
 // small enough that a corner overhanging a box's edge by less is held as if
 // it were on the face (a support wider by at most this).
-inline constexpr double kCornerSlack = 0.05;
+inline constexpr double kCornerSlack = 0.005;
 
 // signed_distance for a corner of a box, polygon or mesh, `towards` its
 // inward direction (corner_inward), against solid o: where o is a box, a
@@ -445,8 +452,8 @@ inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D
       // Exact within a cell (the rows' reach): the sampled distance rounds
       // the mesh's corners over about a sample, and a corner landing on one
       // would find it nearer than its gap said (DistanceGrid).
-      if (o.distance->mesh().face_towards({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, slack, h,
-                                          &d, &m)) {
+      if (o.distance->mesh().face_towards({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, slack, h, &d,
+                                          &m)) {
         const Vec<D> n(m[0], m[1], m[2]);
         *normal = o.posed ? Vec<D>(o.rotation * n) : n;
         return d;
