@@ -506,7 +506,7 @@ TEST(BoxBodies, BoxRestsOnAMeshApex3D) {
 // sideways. In 2D also as polygons (the same squares' corners), either
 // one or both; in 3D as meshes (the boxes' triangles) on a fixed box or
 // mesh, and a box on a fixed mesh. Measured before the corners chose their face by their own
-// direction (obstacle.hpp, corner_distance): the upper box sank 0.07 to
+// direction (physics/corners.hpp, corner_distance): the upper box sank 0.07 to
 // 0.6 of a cell into the lower one (2 cm cells) and, 10 um off flush on a
 // box body in 3D, fell through it to the floor; polygons 0.14 to 0.53,
 // meshes 0.001 to 0.25 (a mesh's sampled distance rounds its corners).

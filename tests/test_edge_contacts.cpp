@@ -385,7 +385,7 @@ TEST(EdgeContacts, TurnedBoxRestsOnAMeshRidgeEdgeToEdge) {
 // 16 cm long (its ends on the ridge) or 26 cm (beyond the ridge's 20 cm).
 // Statics: it rests balanced on the ridge, its lowest point at the ridge's
 // top. Before the corners chose the normal of the ridge's cone that faces
-// them (obstacle.hpp, corner_distance: here the ridge edge's bisector, up)
+// them (physics/corners.hpp, corner_distance: here the ridge edge's bisector, up)
 // their rows took one slope's normal or the sampled distance's rounded
 // one: the beams sank 0.13-0.17 of a cell or rolled off the ridge.
 void rests_along_a_ridge(double yaw, double length) {

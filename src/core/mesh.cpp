@@ -450,7 +450,7 @@ bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slac
     return true;
   }
   // The normals facing the corner, weighted as box_face_towards weighs a
-  // box's (physics/obstacle.hpp); none facing it: the nearest triangle's.
+  // box's (physics/corners.hpp); none facing it: the nearest triangle's.
   Point3 sum{0, 0, 0};
   double wd = 0.0;
   for (int f = 0; f < faces; ++f) {

@@ -108,7 +108,7 @@ class SolidMesh {
   double distance(const Point3& p, Point3* closest = nullptr, double limit = HUGE_VAL) const;
 
   // The distance from p to the surface, exact, for a corner of another
-  // solid `towards` which that solid lies (physics/obstacle.hpp,
+  // solid `towards` which that solid lies (physics/corners.hpp,
   // corner_distance), where p lies within `reach` of the surface (false
   // beyond). Within `slack` of it: the normal of the mesh's cone there (the
   // distinct normals of the triangles within `slack` of p) that follows

@@ -113,7 +113,7 @@ class SolidPolygon {
 
   // Where (x, y) lies within `slack` of the boundary near a corner, the
   // normal of the polygon's cone there (its edges within `slack` of the
-  // point) that follows (tx, ty), as physics/obstacle.hpp's
+  // point) that follows (tx, ty), as physics/corners.hpp's
   // box_face_towards finds it: the sum of the edges' normals weighted by
   // max(0, n . t), normalised, and the same sum of their lines' signed
   // distances (negative on the inner side). True with those; false where

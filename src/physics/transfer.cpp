@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "physics/corners.hpp"
 #include "physics/edges.hpp"
 #include "physics/shape.hpp"
 #include "physics/simulation.hpp"
@@ -189,10 +190,9 @@ void Simulation<D>::transfer_to_grid(double dt) {
         // chosen by its own direction where it sits at that solid's edge
         // (corner_distance).
         Vec<D> inward;
-        const double distance =
-            corner_inward(o, t, &inward)
-                ? corner_distance(q, points[t].at, inward, h, &out)
-                : signed_distance(q, points[t].at, &out);
+        const double distance = corner_inward(o, t, &inward)
+                                    ? corner_distance(q, points[t].at, inward, h, &out)
+                                    : signed_distance(q, points[t].at, &out);
         const double gap = distance - points[t].reach;
         if (gap >= h) continue;
         const Vec<D> n = -out;

@@ -1,0 +1,143 @@
+// Rows of a solid's corners at another solid's edges and corners
+// (transfer.cpp; docs/method.md, "Frictional obstacles"): where a corner of
+// a box, polygon or mesh sits at (or within kCornerSlack cells of) an edge
+// or corner of a box, polygon or mesh, several of that solid's faces are
+// about as near, and the contact normal is taken from the corner's own
+// direction instead of from round-off.
+#pragma once
+
+#include <cmath>
+
+#include "physics/obstacle.hpp"
+
+namespace sablier {
+
+// A corner of another solid meeting a box at (or within `slack` of) one of
+// its edges or corners: box_distance's nearest face is then a matter of
+// round-off (a crate set flush on another: its corners on the other's top
+// edges, a side face as near as the top), and a side face's normal lets
+// the corner sink. The contact normal belongs in both solids' normal cones;
+// here it is the one of the box's cone there (its faces within `slack` of
+// the nearest) that best follows `towards`, the corner's own direction into
+// its solid: for faces with orthogonal normals n_k the maximiser of n .
+// towards is the sum of w_k n_k, w_k = max(0, n_k . towards), normalised (a
+// corner on a corner of the same orientation: the one face facing it; a
+// beam's edge along a box's edge: the edge's bisector). The distance is
+// the same sum of the faces' plane distances (that of the plane through the
+// edge or corner across the normal). Returns false, with nothing written,
+// where the point is over `slack` outside any face, or only the nearest
+// face faces the corner, or none does: box_distance's answer then holds.
+template <int D>
+inline bool box_face_towards(const Vec<D>& lo, const Vec<D>& hi, const Vec<D>& x,
+                             const Vec<D>& towards, double slack, double* distance,
+                             Vec<D>* normal) {
+  const Vec<D> centre = 0.5 * (lo + hi);
+  const Vec<D> q = (x - centre).cwiseAbs() - 0.5 * (hi - lo);
+  if (!(q.maxCoeff() <= slack)) return false;
+  int nearest = 0;
+  for (int k = 1; k < D; ++k)
+    if (q[k] > q[nearest]) nearest = k;
+  Vec<D> n = Vec<D>::Zero();
+  double wq = 0.0;
+  int faces = 0;
+  for (int k = 0; k < D; ++k) {
+    const double side = x[k] < centre[k] ? -1.0 : 1.0, w = side * towards[k];
+    if (q[k] >= q[nearest] - slack && w > 0.0) {
+      n[k] = side * w;
+      wq += w * q[k];
+      ++faces;
+    }
+  }
+  const double len = n.norm();
+  if (!(len > 0.0) || (faces == 1 && n[nearest] != 0.0)) return false;
+  *normal = n / len;
+  *distance = wq / len;
+  return true;
+}
+
+// The direction from corner c of solid o into it, where o has corners:
+// a box's (bit k of c set: the upper side on axis k, as body_points and the
+// fixed corners number them) or a polygon's (in the order of its corners),
+// minus the sum of the outward normals of its faces there; a mesh's vertex
+// c, minus its vertex normal. False for other shapes.
+template <int D>
+inline bool corner_inward(const Obstacle<D>& o, int c, Vec<D>* inward) {
+  Vec<D> s;
+  if (o.shape == ObstacleShape::Box) {
+    for (int k = 0; k < D; ++k) s[k] = (c >> k & 1) ? -1.0 : 1.0;
+  } else if constexpr (D == 2) {
+    if (o.shape != ObstacleShape::Polygon) return false;
+    const auto m = o.polygon->corner_inward(static_cast<std::size_t>(c));
+    s = Vec<D>(m[0], m[1]);
+  } else {
+    if (o.shape != ObstacleShape::Mesh || !o.inward) return false;
+    s = (*o.inward)[static_cast<std::size_t>(c)];
+  }
+  *inward = o.posed ? Vec<D>(o.rotation * s) : s;
+  return true;
+}
+
+// How near (in cells) a corner must come to a solid's edge or corner for
+// corner_distance to choose the face: far beyond round-off, and
+// small enough that a corner overhanging a box's edge by less is held as if
+// it were on the face (a support wider by at most this).
+inline constexpr double kCornerSlack = 0.005;
+
+// signed_distance for a corner of a box, polygon or mesh, `towards` its
+// inward direction (corner_inward), against solid o: where o is a box, a
+// polygon or a mesh, the face chosen by box_face_towards, SolidPolygon::
+// face_towards or SolidMesh::face_towards (exact, where the sampled
+// distance rounds the mesh's edges) within kCornerSlack cells (h the
+// cell size) of its edges and corners, and for a mesh its exact distance
+// within a cell; else, and elsewhere, signed_distance.
+template <int D>
+inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D>& towards,
+                              double h, Vec<D>* normal) {
+  const double slack = kCornerSlack * h;
+  if (!o.gone && o.shape == ObstacleShape::Box) {
+    double d;
+    if (!o.posed) {
+      if (box_face_towards<D>(o.a, o.b, x, towards, slack, &d, normal)) return d;
+    } else {
+      const Vec<D> local = o.rotation.transpose() * (x - o.a);
+      const Vec<D> dir = o.rotation.transpose() * towards;
+      if (box_face_towards<D>(Vec<D>(-o.b), o.b, local, dir, slack, &d, normal)) {
+        *normal = o.rotation * *normal;
+        return d;
+      }
+    }
+  }
+  if constexpr (D == 3) {
+    if (!o.gone && o.shape == ObstacleShape::Mesh && o.distance) {
+      // The solid as the scene gave it, where x is (signed_distance).
+      const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
+      const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
+      double d;
+      Point3 m;
+      // Exact within a cell (the rows' reach): the sampled distance rounds
+      // the mesh's corners over about a sample, and a corner landing on one
+      // would find it nearer than its gap said (DistanceGrid).
+      if (o.distance->mesh().face_towards({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, slack, h, &d,
+                                          &m)) {
+        const Vec<D> n(m[0], m[1], m[2]);
+        *normal = o.posed ? Vec<D>(o.rotation * n) : n;
+        return d;
+      }
+    }
+  }
+  if constexpr (D == 2) {
+    if (!o.gone && o.shape == ObstacleShape::Polygon) {
+      // The solid as the scene gave it, where x is (signed_distance).
+      const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
+      const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
+      double d, nx, ny;
+      if (o.polygon->face_towards(p[0], p[1], t[0], t[1], slack, &d, &nx, &ny)) {
+        *normal = o.posed ? Vec<D>(o.rotation * Vec<D>(nx, ny)) : Vec<D>(nx, ny);
+        return d;
+      }
+    }
+  }
+  return signed_distance(o, x, normal);
+}
+
+}  // namespace sablier
