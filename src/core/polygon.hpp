@@ -51,6 +51,7 @@ class SolidPolygon {
       const double ex = b[0] - a[0], ey = b[1] - a[1];
       edges_.push_back({a[0], a[1], b[1], ex, ey, ex * ex + ey * ey});
     }
+    outward_ = orientation() > 0.0 ? 1.0 : -1.0;
   }
 
   // Winding number around (x, y): nonzero inside.
@@ -99,8 +100,8 @@ class SolidPolygon {
   Point2 edge_normal(std::size_t i) const {
     const Edge& e = edges_[i];
     if (!(e.len2 > 0.0)) return {0.0, 0.0};
-    const double len = std::sqrt(e.len2), o = orientation() > 0.0 ? 1.0 : -1.0;
-    return {o * e.ey / len, -o * e.ex / len};
+    const double len = std::sqrt(e.len2);
+    return {outward_ * e.ey / len, -outward_ * e.ex / len};
   }
 
   // Corner i's direction into the solid: minus the sum of the outward
@@ -178,6 +179,7 @@ class SolidPolygon {
   std::vector<Point2> v_;
   std::vector<Edge> edges_;
   Point2 lo_{}, hi_{};
+  double outward_ = 1.0;  // +1 for counter-clockwise corners: an edge's right-hand normal is out
 };
 
 }  // namespace sablier

@@ -70,8 +70,9 @@ inline bool corner_inward(const Obstacle<D>& o, int c, Vec<D>* inward) {
     const auto m = o.polygon->corner_inward(static_cast<std::size_t>(c));
     s = Vec<D>(m[0], m[1]);
   } else {
-    if (o.shape != ObstacleShape::Mesh || !o.inward) return false;
-    s = (*o.inward)[static_cast<std::size_t>(c)];
+    if (o.shape != ObstacleShape::Mesh || !o.vertex_normals) return false;
+    const Point3& m = (*o.vertex_normals)[static_cast<std::size_t>(c)];
+    s = -Vec<D>(m[0], m[1], m[2]);
   }
   *inward = o.posed ? Vec<D>(o.rotation * s) : s;
   return true;

@@ -34,9 +34,9 @@ struct Obstacle {
   // 3D meshes: the convex edges of the solid as the scene gave it (`points`'
   // frame for a body, less `a` for a fixed mesh), for edge contacts (edges.hpp).
   std::shared_ptr<const std::vector<FeatureEdge>> edges;
-  // 3D meshes with `points`: each point's direction into the solid (minus
-  // its vertex normal, core/mesh.hpp), in `points`' frame (corner_inward).
-  std::shared_ptr<const std::vector<Vec<D>>> inward;
+  // 3D meshes with `points`: each point's outward vertex normal
+  // (core/mesh.hpp), in `points`' frame (physics/corners.hpp).
+  std::shared_ptr<const std::vector<Point3>> vertex_normals;
   double mu = 0.5;                   // Coulomb coefficient (scene convention, METHOD.md section 4)
   Vec<D> velocity = Vec<D>::Zero();  // m/s: kinematic translation, or a body's velocity
   double until = 1e300;              // s: taken away from this time on (scene's obstacle[].until)
@@ -153,15 +153,6 @@ inline MassProperties body_mass_properties(const ObstacleConfig& c) {
   return mesh_mass_properties(*c.surface);
 }
 
-// A mesh's vertices' directions into its solid (Obstacle::inward).
-template <int D>
-std::shared_ptr<const std::vector<Vec<D>>> mesh_inward(const TriangleMesh& surface) {
-  auto out = std::make_shared<std::vector<Vec<D>>>();
-  if constexpr (D == 3)
-    for (const Point3& n : vertex_normals(surface)) out->push_back(-Vec<D>(n[0], n[1], n[2]));
-  return out;
-}
-
 template <int D>
 Obstacle<D> make_obstacle(const ObstacleConfig& c) {
   Obstacle<D> o;
@@ -196,7 +187,7 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
       auto points = std::make_shared<std::vector<Vec<D>>>();
       for (const Point3& p : c.surface->vertices) points->push_back(Vec<D>(p[0], p[1], p[2]));
       o.points = std::move(points);
-      o.inward = mesh_inward<D>(*c.surface);
+      o.vertex_normals = c.vertex_normals;
     }
   if (c.shape == ObstacleShape::Plane) o.b.normalize();
   o.radius = c.radius;
@@ -244,7 +235,7 @@ Obstacle<D> make_obstacle(const ObstacleConfig& c) {
         for (const auto& p : c.polygon->corners()) points->push_back(Vec<D>(p[0], p[1]));
       } else {
         for (const Point3& p : c.surface->vertices) points->push_back(Vec<D>(p[0], p[1], p[2]));
-        o.inward = mesh_inward<D>(*c.surface);
+        o.vertex_normals = c.vertex_normals;
       }
       for (int k = 0; k < D; ++k) {
         o.b[k] = c.centroid[k];

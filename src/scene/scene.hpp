@@ -210,6 +210,9 @@ struct ObstacleConfig {
   std::shared_ptr<const TriangleMesh> surface{};   // the triangles, transformed (for outputs)
   // The mesh's convex edges (core/mesh.hpp), for rigid bodies' edge contacts.
   std::shared_ptr<const std::vector<FeatureEdge>> edges{};
+  // Its vertices' outward normals (core/mesh.hpp, vertex_normals), for the
+  // rows of its corners at other solids' edges (physics/corners.hpp).
+  std::shared_ptr<const std::vector<std::array<double, 3>>> vertex_normals{};
   Vec3d extent_min{0, 0, 0}, extent_max{0, 0, 0};  // polygon, mesh: bounding box, m
   // Its thinnest part when thinner than kThinSolidCells cells, measured
   // once the scene is read (scene_obstacles.hpp, thinnest_part), and where;

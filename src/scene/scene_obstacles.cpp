@@ -287,6 +287,7 @@ void read_geometry(TableReader& t, const std::string& shape, ObstacleConfig& o,
     o.translate = m.translate;
     o.surface = std::move(m.surface);
     o.edges = std::make_shared<const std::vector<FeatureEdge>>(feature_edges(*o.surface));
+    o.vertex_normals = std::make_shared<const std::vector<Point3>>(vertex_normals(*o.surface));
     for (int a = 0; a < 3; ++a) {
       o.extent_min[a] = m.mesh->lower()[a];
       o.extent_max[a] = m.mesh->upper()[a];
