@@ -186,9 +186,9 @@ void Simulation<D>::transfer_to_grid(double dt) {
       const int n_points = touch_points(o, points);
       for (int t = 0; t < n_points; ++t) {
         Vec<D> out;  // from the solid towards the point
-        // A box's or polygon's corner: the face of a box or polygon it meets
-        // chosen by its own direction where it sits at that solid's edge
-        // (corner_distance).
+        // A box's, polygon's or mesh's corner: the normal of a box, polygon
+        // or mesh it meets chosen by its own direction where it sits at that
+        // solid's edge, and a mesh's exact distance (corner_distance).
         Vec<D> inward;
         const double distance = corner_inward(o, t, &inward)
                                     ? corner_distance(q, points[t].at, inward, h, &out)
