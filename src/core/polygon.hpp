@@ -87,10 +87,10 @@ class SolidPolygon {
       const Point2& a = v_[edge];
       const Point2& b = v_[(edge + 1) % v_.size()];
       const double ex = b[0] - a[0], ey = b[1] - a[1], len = std::hypot(ex, ey);
-      // The edge's right-hand normal points out of a counter-clockwise polygon.
-      const double o = orientation() > 0.0 ? 1.0 : -1.0;
-      *nx = o * ey / len;
-      *ny = -o * ex / len;
+      // The edge's right-hand normal points out of a counter-clockwise
+      // polygon (outward_, the orientation's sign, kept at construction).
+      *nx = outward_ * ey / len;
+      *ny = -outward_ * ex / len;
     }
     return in ? -dist : dist;
   }

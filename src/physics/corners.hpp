@@ -95,48 +95,42 @@ template <int D>
 inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D>& towards,
                               double h, Vec<D>* normal) {
   const double slack = kCornerSlack * h;
-  if (!o.gone && o.shape == ObstacleShape::Box) {
-    double d;
-    if (!o.posed) {
-      if (box_face_towards<D>(o.a, o.b, x, towards, slack, &d, normal)) return d;
-    } else {
-      const Vec<D> local = o.rotation.transpose() * (x - o.a);
-      const Vec<D> dir = o.rotation.transpose() * towards;
-      if (box_face_towards<D>(Vec<D>(-o.b), o.b, local, dir, slack, &d, normal)) {
-        *normal = o.rotation * *normal;
-        return d;
-      }
+  if (o.gone) return signed_distance(o, x, normal);
+  // x and `towards` in the frame signed_distance reads the solid in (a
+  // turned solid's own; a polygon's or mesh's as the scene gave it), and
+  // the normal found there back in the world's.
+  const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
+  const auto solid_point = [&]() -> Vec<D> {
+    return o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
+  };
+  Vec<D> n;
+  double d;
+  bool found = false;
+  if (o.shape == ObstacleShape::Box) {
+    found = o.posed
+                ? box_face_towards<D>(Vec<D>(-o.b), o.b, Vec<D>(o.rotation.transpose() * (x - o.a)),
+                                      t, slack, &d, &n)
+                : box_face_towards<D>(o.a, o.b, x, t, slack, &d, &n);
+  } else if constexpr (D == 3) {
+    // Exact within a cell (the rows' reach): the sampled distance rounds
+    // the mesh's corners over about a sample, and a corner landing on one
+    // would find it nearer than its gap said (DistanceGrid).
+    if (o.shape == ObstacleShape::Mesh && o.distance) {
+      const Vec<D> p = solid_point();
+      Point3 m{};
+      found =
+          o.distance->mesh().face_towards({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, slack, h, &d, &m);
+      n = Vec<D>(m[0], m[1], m[2]);
+    }
+  } else {
+    if (o.shape == ObstacleShape::Polygon) {
+      const Vec<D> p = solid_point();
+      found = o.polygon->face_towards(p[0], p[1], t[0], t[1], slack, &d, &n[0], &n[1]);
     }
   }
-  if constexpr (D == 3) {
-    if (!o.gone && o.shape == ObstacleShape::Mesh && o.distance) {
-      // The solid as the scene gave it, where x is (signed_distance).
-      const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
-      const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
-      double d;
-      Point3 m;
-      // Exact within a cell (the rows' reach): the sampled distance rounds
-      // the mesh's corners over about a sample, and a corner landing on one
-      // would find it nearer than its gap said (DistanceGrid).
-      if (o.distance->mesh().face_towards({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, slack, h, &d,
-                                          &m)) {
-        const Vec<D> n(m[0], m[1], m[2]);
-        *normal = o.posed ? Vec<D>(o.rotation * n) : n;
-        return d;
-      }
-    }
-  }
-  if constexpr (D == 2) {
-    if (!o.gone && o.shape == ObstacleShape::Polygon) {
-      // The solid as the scene gave it, where x is (signed_distance).
-      const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
-      const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
-      double d, nx, ny;
-      if (o.polygon->face_towards(p[0], p[1], t[0], t[1], slack, &d, &nx, &ny)) {
-        *normal = o.posed ? Vec<D>(o.rotation * Vec<D>(nx, ny)) : Vec<D>(nx, ny);
-        return d;
-      }
-    }
+  if (found) {
+    *normal = o.posed ? Vec<D>(o.rotation * n) : n;
+    return d;
   }
   return signed_distance(o, x, normal);
 }
