@@ -73,6 +73,15 @@ inline TriangleMesh box_mesh(const Point3& lo, const Point3& hi) {
   return m;
 }
 
+// Writes a mesh to an OBJ file to the last bit.
+inline void write_exact_obj(const std::filesystem::path& path, const TriangleMesh& m) {
+  std::ofstream out(path);
+  out.precision(17);
+  for (const Point3& v : m.vertices) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
+  for (const auto& t : m.triangles)
+    out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+}
+
 // Writes meshes to one OBJ file (`v` and `f` lines), their vertices
 // numbered one after the other.
 inline void write_obj(const std::filesystem::path& path, const std::vector<TriangleMesh>& meshes) {

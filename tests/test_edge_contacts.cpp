@@ -7,8 +7,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <random>
 #include <string>
@@ -228,15 +226,6 @@ V3 contact_force(const Simulation<3>& sim, std::size_t k, int* rows) {
   return total;
 }
 
-// Writes a mesh to an OBJ file to the last bit.
-void write_exact_obj(const fs::path& path, const TriangleMesh& m) {
-  std::ofstream out(path);
-  out << std::setprecision(17);
-  for (const Point3& v : m.vertices) out << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
-  for (const auto& t : m.triangles)
-    out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-}
-
 // A room with stick walls, and a speck of sand resting in its far corner
 // (a scene needs one; falling from above, its splash pushed a body on the
 // floor).
@@ -340,7 +329,7 @@ TEST(EdgeContacts, PlankRestsAcrossAFixedBeam) {
 // diagonals left out) cross the beam's as the box's do.
 TEST(EdgeContacts, MeshPlankRestsAcrossAFixedBeam) {
   const fs::path dir = test::temp_dir("mesh_plank"), obj = dir / "plank.obj";
-  write_exact_obj(obj, test::box_mesh({0.15, 0.12, 0.102}, {0.45, 0.18, 0.162}));
+  test::write_exact_obj(obj, test::box_mesh({0.15, 0.12, 0.102}, {0.45, 0.18, 0.162}));
   const std::string text =
       kRoom +
       "[[obstacle]]\nshape = \"box\"\nmin = [0.28, 0.05, 0.0]\nmax = [0.32, 0.25, 0.1]\n"
@@ -366,7 +355,7 @@ TEST(EdgeContacts, TurnedBoxRestsOnAMeshRidgeEdgeToEdge) {
     p = {0.3 + c * (p[0] + p[2]), 0.15 + p[1], 0.05 + c * (p[2] - p[0])};
     top = std::max(top, p[2]);
   }
-  write_exact_obj(obj, ridge);
+  test::write_exact_obj(obj, ridge);
   const double half_diagonal = 0.03 * std::sqrt(2.0), z = top + half_diagonal + 0.002;
   const std::string text = kRoom + "[[obstacle]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
                            "\"\n[[obstacle]]\nshape = \"box\"\nmin = [0.15, 0.12, " +
@@ -398,7 +387,7 @@ void rests_along_a_ridge(double yaw, double length) {
     p = {0.3 + cy * x - sy * y, 0.15 + sy * x + cy * y, 0.05 + z};
     top = std::max(top, p[2]);
   }
-  write_exact_obj(obj, ridge);
+  test::write_exact_obj(obj, ridge);
   const double z = top + 0.03 * std::sqrt(2.0) + 0.002;
   const std::string text = kRoom + "[[obstacle]]\nshape = \"mesh\"\nfile = \"" + obj.string() +
                            "\"\n[[obstacle]]\nshape = \"box\"\nmin = [0.27, " +

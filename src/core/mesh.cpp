@@ -386,31 +386,26 @@ double SolidMesh::distance(const Point3& p, Point3* closest, double limit) const
   return best;
 }
 
-bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slack, double reach,
-                             double* distance, Point3* normal) const {
-  if (nodes_.empty()) return false;
-  const auto unit_normal = [&](const Tri& t) {
-    const Point3 n = cross(sub(t.b, t.a), sub(t.c, t.a));
-    const double len = norm(n);
-    return len > 0.0 ? Point3{outward_ * n[0] / len, outward_ * n[1] / len, outward_ * n[2] / len}
-                     : Point3{0, 0, 0};
-  };
-  // Each level pops one entry and pushes at most two (as distance()).
+// Triangle t's outward unit normal (zero for a triangle of no area).
+Point3 SolidMesh::unit_normal(const Tri& t) const {
+  const Point3 n = cross(sub(t.b, t.a), sub(t.c, t.a));
+  const double len = norm(n);
+  return len > 0.0 ? Point3{outward_ * n[0] / len, outward_ * n[1] / len, outward_ * n[2] / len}
+                   : Point3{0, 0, 0};
+}
+
+// f(k, q, d2) for each triangle k within `reach` of p, q its point nearest
+// p and d2 their squared distance: the tree's nodes whose bounding spheres
+// come within `reach`, each level popping one entry and pushing at most two
+// (as distance()).
+template <class F>
+void SolidMesh::within(const Point3& p, double reach, const F& f) const {
+  if (nodes_.empty()) return;
   constexpr std::size_t kStack = 128;
   std::array<std::int32_t, kStack> stack;
   std::size_t top = 0;
   stack[top++] = 0;
-  double nearest2 = HUGE_VAL;
-  std::int32_t nearest = -1;
-  Point3 nearest_point{};
-  // The distinct face normals within `slack` facing `towards` (coplanar
-  // triangles count once, so that how a face is split does not weigh),
-  // their weights and plane distances.
-  constexpr int kFaces = 16;
-  std::array<Point3, kFaces> face_normal;
-  std::array<double, kFaces> face_weight, face_plane;
-  int faces = 0;
-  const double reach2 = reach * reach, slack2 = slack * slack;
+  const double reach2 = reach * reach;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
     if (norm(sub(p, n.centre)) - n.radius > reach) continue;
@@ -424,20 +419,39 @@ bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slac
       const Tri& t = tri_[k];
       const Point3 q = closest_on_triangle(p, t.a, t.b, t.c);
       const double d2 = distance2(p, q);
-      if (!(d2 <= reach2)) continue;
-      if (d2 < nearest2) nearest2 = d2, nearest = k, nearest_point = q;
-      if (!(d2 <= slack2)) continue;
-      const Point3 m = unit_normal(t);
-      const double w = dot(m, towards);
-      if (!(w > 0.0)) continue;
-      bool seen = false;
-      for (int f = 0; f < faces && !seen; ++f) seen = distance2(face_normal[f], m) < 1e-18;
-      if (seen || faces == kFaces) continue;
-      face_normal[faces] = m;
-      face_weight[faces] = w;
-      face_plane[faces++] = dot(m, sub(p, t.a));
+      if (d2 <= reach2) f(k, q, d2);
     }
   }
+}
+
+bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slack, double reach,
+                             double* distance, Point3* normal) const {
+  if (nodes_.empty()) return false;
+  double nearest2 = HUGE_VAL;
+  std::int32_t nearest = -1;
+  Point3 nearest_point{};
+  // The distinct face normals within `slack` facing `towards` (coplanar
+  // triangles count once, so that how a face is split does not weigh),
+  // their weights and plane distances.
+  constexpr int kFaces = 16;
+  std::array<Point3, kFaces> face_normal;
+  std::array<double, kFaces> face_weight, face_plane;
+  int faces = 0;
+  const double slack2 = slack * slack;
+  within(p, reach, [&](std::int32_t k, const Point3& q, double d2) {
+    const Tri& t = tri_[k];
+    if (d2 < nearest2) nearest2 = d2, nearest = k, nearest_point = q;
+    if (!(d2 <= slack2)) return;
+    const Point3 m = unit_normal(t);
+    const double w = dot(m, towards);
+    if (!(w > 0.0)) return;
+    bool seen = false;
+    for (int f = 0; f < faces && !seen; ++f) seen = distance2(face_normal[f], m) < 1e-18;
+    if (seen || faces == kFaces) return;
+    face_normal[faces] = m;
+    face_weight[faces] = w;
+    face_plane[faces++] = dot(m, sub(p, t.a));
+  });
   if (nearest < 0) return false;
   if (nearest2 > slack2) {
     // Off the surface by more than `slack`: the exact distance to the
@@ -466,6 +480,31 @@ bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slac
     *distance = dot(*normal, sub(p, tri_[nearest].a));
   }
   return true;
+}
+
+int SolidMesh::faces_over(const Point3& p, const Point3& towards, double reach, double slack,
+                          Point3* normals, double* distances, int max) const {
+  int count = 0;
+  const double inside2 = 1e-18 * reach * reach;
+  within(p, reach, [&](std::int32_t k, const Point3& q, double) {
+    const Tri& t = tri_[k];
+    const Point3 m = unit_normal(t);
+    if (!(dot(m, m) > 0.0)) return;  // a triangle of no area
+    const double d = dot(m, sub(p, t.a));
+    if (!(d >= -slack && d < reach)) return;
+    const Point3 foot{p[0] - d * m[0], p[1] - d * m[1], p[2] - d * m[2]};
+    if (!(distance2(foot, q) <= inside2)) return;                  // p is not over the triangle
+    if (std::abs(d) <= slack && !(dot(m, towards) > 0.0)) return;  // on it, facing away
+    int f = 0;
+    while (f < count && !(distance2(normals[f], m) < 1e-18)) ++f;
+    if (f < count) {
+      distances[f] = std::min(distances[f], d);
+    } else if (count < max) {
+      normals[count] = m;
+      distances[count++] = d;
+    }
+  });
+  return count;
 }
 
 }  // namespace sablier

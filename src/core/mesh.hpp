@@ -122,6 +122,20 @@ class SolidMesh {
   bool face_towards(const Point3& p, const Point3& towards, double slack, double reach,
                     double* distance, Point3* normal) const;
 
+  // The faces that lie under p (physics/corners.hpp, faces_over): the
+  // distinct planes of the triangles within `reach` of p onto which p
+  // projects (its nearest point on the triangle is its projection, to a
+  // part in 1e9 of `reach`), whose signed distance lies in [-slack, reach)
+  // and which, where p lies within `slack` of the plane, face `towards`,
+  // the direction into the solid p is a corner of (a corner at a convex
+  // edge lies on the plane of the face beyond it too, which faces away
+  // from it): their outward normals and distances, at most `max`, one per
+  // distinct normal (the nearest of parallel planes). Near a concave fold
+  // p lies over both of its faces, and must stay outside both planes; near
+  // a convex one it lies behind the other face's plane. Returns their count.
+  int faces_over(const Point3& p, const Point3& towards, double reach, double slack,
+                 Point3* normals, double* distances, int max) const;
+
   const Point3& lower() const { return lo_; }
   const Point3& upper() const { return hi_; }
   double volume() const { return volume_; }  // enclosed volume, m^3 (by the divergence theorem)
@@ -143,6 +157,9 @@ class SolidMesh {
     std::int32_t first, count, left, right;  // children -1 for a leaf
   };
   std::int32_t build(std::int32_t first, std::int32_t count, int depth);
+  Point3 unit_normal(const Tri& t) const;
+  template <class F>
+  void within(const Point3& p, double reach, const F& f) const;
   void summarise(Node& n) const;
 
   std::vector<Tri> tri_;

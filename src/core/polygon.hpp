@@ -152,6 +152,41 @@ class SolidPolygon {
     return true;
   }
 
+  // The edges that lie under (x, y): those onto whose segment the point
+  // projects (within a part in 1e9 of its ends), facing it within `reach`
+  // (the signed distance to their line in [-slack, reach)), and, where the
+  // point lies within `slack` of their line, facing (tx, ty), the
+  // direction into the solid the point is a corner of (a corner at a
+  // convex corner lies on the line of the edge beyond it too, which faces
+  // away from it). Their outward normals (nx, ny) and distances (d), at
+  // most `max` of them, one per distinct normal (the nearest line of
+  // parallel edges). Near a concave corner both its edges lie under a
+  // point, and the point must stay outside both lines (physics/corners.hpp,
+  // faces_over); near a convex corner the point lies behind the other
+  // edge's line and only one counts. Returns their count.
+  int faces_over(double x, double y, double tx, double ty, double reach, double slack, double* nx,
+                 double* ny, double* d, int max) const {
+    int count = 0;
+    for (std::size_t i = 0; i < edges_.size(); ++i) {
+      const Edge& e = edges_[i];
+      if (!(e.len2 > 0.0)) continue;
+      const double t = ((x - e.ax) * e.ex + (y - e.ay) * e.ey) / e.len2;
+      if (!(t >= -1e-9 && t <= 1.0 + 1e-9)) continue;
+      const Point2 m = edge_normal(i);
+      const double dist = m[0] * (x - e.ax) + m[1] * (y - e.ay);
+      if (!(dist >= -slack && dist < reach)) continue;
+      if (std::abs(dist) <= slack && !(m[0] * tx + m[1] * ty > 0.0)) continue;
+      int f = 0;
+      while (f < count && !(std::abs(nx[f] - m[0]) + std::abs(ny[f] - m[1]) < 1e-9)) ++f;
+      if (f < count) {
+        d[f] = std::min(d[f], dist);
+      } else if (count < max) {
+        nx[count] = m[0], ny[count] = m[1], d[count++] = dist;
+      }
+    }
+    return count;
+  }
+
   // Twice the signed area: positive for counter-clockwise corners.
   double orientation() const {
     double a = 0.0;

@@ -6,6 +6,7 @@
 // direction instead of from round-off.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "physics/obstacle.hpp"
@@ -133,6 +134,48 @@ inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D
     return d;
   }
   return signed_distance(o, x, normal);
+}
+
+// Where a polygon or mesh folds inward (a V-groove's bottom, a step's
+// inner corner), the solid near the fold is the union of its two faces'
+// half-spaces, and a point near it must stay outside both planes: one row
+// on the nearest face lets it slip across the fold into the other face
+// within a step (a cube dropped into a V-groove ended a third of a
+// millimetre into one slope). The faces of solid o that lie under x, the
+// point projecting onto them, within `reach` in front of them (or
+// kCornerSlack cells of size h behind), and, within that slack of their
+// plane, facing `towards` (the point's direction into its own solid, as
+// corner_inward gives it; zero for a point that has none): their normals
+// (world frame, out of o) and signed distances, at most `max`, one per
+// distinct normal. Near a convex fold the point lies behind the other
+// face's plane (or on it, facing away) and only the one face counts, which
+// the row of the nearest face already holds. Boxes, balls and cylinders
+// are convex: none.
+template <int D>
+inline int faces_over(const Obstacle<D>& o, const Vec<D>& x, const Vec<D>& towards, double reach,
+                      double h, Vec<D>* normals, double* distances, int max) {
+  if (o.gone) return 0;
+  const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
+  const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
+  constexpr int kMax = 8;
+  max = std::min(max, kMax);
+  int count = 0;
+  if constexpr (D == 2) {
+    if (o.shape != ObstacleShape::Polygon) return 0;
+    double nx[kMax], ny[kMax];
+    count = o.polygon->faces_over(p[0], p[1], t[0], t[1], reach, kCornerSlack * h, nx, ny,
+                                  distances, max);
+    for (int f = 0; f < count; ++f) normals[f] = Vec<D>(nx[f], ny[f]);
+  } else {
+    if (o.shape != ObstacleShape::Mesh || !o.distance) return 0;
+    Point3 m[kMax];
+    count = o.distance->mesh().faces_over({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, reach,
+                                          kCornerSlack * h, m, distances, max);
+    for (int f = 0; f < count; ++f) normals[f] = Vec<D>(m[f][0], m[f][1], m[f][2]);
+  }
+  if (o.posed)
+    for (int f = 0; f < count; ++f) normals[f] = o.rotation * normals[f];
+  return count;
 }
 
 }  // namespace sablier

@@ -174,6 +174,29 @@ void Simulation<D>::transfer_to_grid(double dt) {
       if constexpr (D == 3) ghost[2] = static_cast<int>((key / (cells[1] + 1)) % (cells[2] + 1));
       return grid_.node_index(ghost);
     };
+    // Slots of the rows' keys: a body's points (t), a fixed solid's corners
+    // or vertices (NC + t), edge crossings (edge_slot + their pair), and
+    // the rows of faces at concave folds (edge_slot + 2 kFolds t + ...; their
+    // warm starts may share a ghost node with an edge crossing's, as rows
+    // past a face's node count do).
+    std::int64_t edge_slot = 2 * NC;
+    for (const Obstacle<D>& o : obstacles) {
+      if (o.points)
+        edge_slot = std::max(edge_slot, NC + static_cast<std::int64_t>(o.points->size()));
+      if (o.shape == ObstacleShape::Cylinder)
+        edge_slot = std::max(edge_slot, NC + std::int64_t(2 * kRimPoints + 2));
+    }
+    constexpr int kFolds = 4;
+    Vec<D> fold_normal[kFolds];
+    double fold_distance[kFolds];
+    // Whether face f of those a point lies over is one its distance was
+    // measured to (the same plane distance, to a part in 1e9 of a cell):
+    // that face's row is the point's own, whose normal, the direction from
+    // the nearest point, is round-off for a point on the face, so that
+    // comparing normals would not tell.
+    const auto measured = [&](int f, double distance) {
+      return std::abs(fold_distance[f] - distance) <= 1e-9 * h;
+    };
     // Rows of body b's points against solid s (the smaller friction of the
     // two, and the solid's motion: a moving plane drags the body along, as
     // it does the sand), on ghost nodes beyond the xmin face (zero velocity
@@ -189,7 +212,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         // A box's, polygon's or mesh's corner: the normal of a box, polygon
         // or mesh it meets chosen by its own direction where it sits at that
         // solid's edge, and a mesh's exact distance (corner_distance).
-        Vec<D> inward;
+        Vec<D> inward = Vec<D>::Zero();
         const double distance = corner_inward(o, t, &inward)
                                     ? corner_distance(q, points[t].at, inward, h, &out)
                                     : signed_distance(q, points[t].at, &out);
@@ -211,6 +234,23 @@ void Simulation<D>::transfer_to_grid(double dt) {
           c.other_arm = q.shape != ObstacleShape::Ball ? Vec<D>(points[t].at - distance * out - q.a)
                                                        : Vec<D>(-q.radius * n);
         body_contacts.push_back(c);
+        // At a concave fold of a polygon or mesh, a row for each other face
+        // the point lies over (corners.hpp, faces_over).
+        const int over = faces_over(q, points[t].at, inward, h + points[t].reach, h, fold_normal,
+                                    fold_distance, kFolds);
+        for (int f = 0; f < over; ++f) {
+          if (measured(f, distance)) continue;
+          const Vec<D> on = points[t].at - fold_distance[f] * fold_normal[f];
+          Contact e = c;
+          e.node = ghost_node(static_cast<std::int64_t>(s) * count + static_cast<std::int64_t>(b) +
+                              count * count * (edge_slot + 2 * kFolds * t + f));
+          e.normal = -fold_normal[f];
+          e.gap = std::max(fold_distance[f] - points[t].reach, 0.0);
+          e.surface_velocity = q.dynamic ? Vec<D>::Zero() : surface_velocity(q, on);
+          e.arm = (points[t].at - o.a) - points[t].reach * fold_normal[f];
+          if (q.dynamic) e.other_arm = on - q.a;
+          body_contacts.push_back(e);
+        }
       }
     };
     // How much further than point t of solid q its row reaches: a ball's
@@ -257,7 +297,7 @@ void Simulation<D>::transfer_to_grid(double dt) {
         const double reach = bounding_radius(o) + h + further;
         if ((x - o.a).squaredNorm() >= reach * reach) continue;
         Vec<D> n;  // the body's outward normal
-        Vec<D> inward;
+        Vec<D> inward = Vec<D>::Zero();
         const double from_point = corner_inward(q, static_cast<int>(t), &inward)
                                       ? corner_distance(o, x, inward, h, &n)
                                       : signed_distance(o, x, &n);
@@ -275,20 +315,27 @@ void Simulation<D>::transfer_to_grid(double dt) {
                   surface_velocity(q, Vec<D>(x - further * n))};
         c.arm = x - from_point * n - o.a;
         body_contacts.push_back(c);
+        // A concave fold of the body: a row for each other face the corner
+        // lies over.
+        const int over =
+            faces_over(o, x, inward, h + further, h, fold_normal, fold_distance, kFolds);
+        for (int f = 0; f < over; ++f) {
+          if (measured(f, from_point)) continue;
+          Contact e = c;
+          e.node = ghost_node(static_cast<std::int64_t>(s) * count + static_cast<std::int64_t>(b) +
+                              count * count * (edge_slot + 2 * kFolds * t + kFolds + f));
+          e.normal = fold_normal[f];
+          e.gap = std::max(fold_distance[f] - further, 0.0);
+          e.surface_velocity = surface_velocity(q, Vec<D>(x - further * fold_normal[f]));
+          e.arm = x - fold_distance[f] * fold_normal[f] - o.a;
+          body_contacts.push_back(e);
+        }
       }
     };
     // Rows where an edge of body b crosses an edge of solid s, a fixed box
     // or mesh or another body (3D, edges.hpp): the normal from the body to
     // the solid across both edges, the arms to the edges' closest points.
-    // Their keys come after every point's: a body's points (t), and a fixed
-    // solid's corners or vertices (NC + t).
-    std::int64_t edge_slot = 2 * NC;
-    for (const Obstacle<D>& o : obstacles) {
-      if (o.points)
-        edge_slot = std::max(edge_slot, NC + static_cast<std::int64_t>(o.points->size()));
-      if (o.shape == ObstacleShape::Cylinder)
-        edge_slot = std::max(edge_slot, NC + std::int64_t(2 * kRimPoints + 2));
-    }
+    // Their keys' slots start at edge_slot (above).
     EdgeScratch edge_scratch;
     std::vector<EdgeContact> crossings;
     const auto edges_against = [&](std::size_t b, std::size_t s) {

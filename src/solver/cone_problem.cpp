@@ -144,7 +144,8 @@ inline bool separate_or_stick(const ConeProblem<D>& p, int j, const SymVec<D>& y
 // same results. Contact rows (own colours) are updated one by one, in
 // order, with the queue empty.
 template <int D>
-inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue) {
+inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& queue,
+                        solver_detail::BodyMoves<D>* moves) {
   constexpr int SD = sym_size(D);
   constexpr int kChunk = 8;
   constexpr bool kPasses = D == 3;
@@ -198,7 +199,7 @@ inline void update_rows(ConeProblem<D>& p, int begin, int end, SlideQueue<D>& qu
       }
     }
   }
-  for (int j = std::max(begin, p.first_contact); j < end; ++j) update_contact_row<D>(p, j);
+  for (int j = std::max(begin, p.first_contact); j < end; ++j) update_contact_row<D>(p, j, moves);
 }
 
 }  // namespace
@@ -335,6 +336,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
   std::vector<SymVec<D>> best_lambda, best_cell_stress;
   std::vector<DPCase> best_state;
   bool went_back = false;
+  double bodies_traded = 0.0;
   SpinBarrier barrier;
 #pragma omp parallel num_threads(team_size(p))
   {
@@ -374,14 +376,19 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
     double my_residual = 0.0;
     double best = std::numeric_limits<double>::infinity();
     bool allocated = false;
+    solver_detail::BodyMoves<D> moves;  // the bodies' rows against solids, on the first thread
+    if (team.rank == 0) moves.reset(p);
     // u_prev = the velocities before each sweep (after the first, the
     // mixer leaves them there).
     for (std::int64_t q = q0; q < q1; ++q) u_prev[q] = velocity_at<D>(p, free[q]);
     for (int it = 1; it <= max_iterations; ++it) {
       team.sync();
       order.walk(
-          team.rank, [&](int j0, int j1) { update_rows<D>(p, j0, j1, queue); },
+          team.rank, [&](int j0, int j1) { update_rows<D>(p, j0, j1, queue, &moves); },
           [&] { queue.flush(p); }, [&] { team.sync(); });
+      // The bodies' rows run on the first thread; the others read what they
+      // traded after the sums' barrier below.
+      if (team.rank == 0) bodies_traded = moves.traded(p);
       // The walk ends at a barrier: the cell rows see every row's update.
       if (cells > 0) solver_detail::update_cells<D>(p, team);
       // |u^k - u^{k-1}|_M^2 and |u^k - u_f|_M^2. Without mixing, u_prev
@@ -399,7 +406,7 @@ SolveReport solve_gauss_seidel(ConeProblem<D>& p, double tolerance, int max_iter
       } else {
         mixer.measure(team, p, free, u_prev, u_free, weight, sums, mix_state);
       }
-      const double r = sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : 0.0;
+      const double r = sums[1] > 0.0 ? std::sqrt((sums[0] + bodies_traded) / sums[1]) : 0.0;
       my_iterations = it;
       my_residual = r;
       if (history) {

@@ -202,8 +202,17 @@ void apply_stress_to_velocity(ConeProblem<D>& p);
 // density and gravity), zero exactly at a fixed point, and blind to the
 // stress components in the null space of W = H H^T (lambda has d(d+1)/2
 // components per node against d velocities, so the stress field is not
-// unique; those components never move a grain). Stops when r <= tolerance or
-// after max_iterations sweeps. Bit-identical whatever the thread count.
+// unique; those components never move a grain). Plus what the rows of
+// bodies against solids (on ghost nodes) traded: per body, the sum of the
+// norms of the changes each such row made to its velocities in the sweep
+// less the norm of their sum, squared, added to the numerator
+// (contact_rows.hpp, BodyMoves). Several such rows at one point (a corner
+// at a concave fold, faces_over) can trade stress so that their body ends
+// the sweep where it began while each row still moves it (a cube in a
+// V-groove passed the test on its fourth sweep with its rows 3% from their
+// own solutions, and the next sweep's r was 2.8e-3). Stops when r <=
+// tolerance or after max_iterations sweeps. Bit-identical whatever the
+// thread count.
 // With anderson_depth m > 0 the sweeps are accelerated by Anderson mixing of
 // the last m sweeps (cone_problem.cpp, AndersonMixer); m = 0 is plain
 // Gauss-Seidel.

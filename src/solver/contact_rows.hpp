@@ -4,7 +4,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "core/tensor.hpp"
 #include "solver/cone_problem.hpp"
@@ -66,10 +68,63 @@ inline void move_contact_node(ConeProblem<D>& p, int j, const Vec<D>& f) {
   set_velocity_at<D>(p, i, u);
 }
 
+// How much the rows of bodies against solids (on ghost nodes) moved each
+// body in a sweep, against how far it moved: per body, the sum of the
+// kinetic-energy norms (the residual's, cone_problem.hpp) of the changes
+// each row made to its velocities, and those changes' sum. Several rows at
+// one point (a corner at a concave fold) can trade stress so that the body
+// ends the sweep where it began while each row still moves it; `traded`
+// measures that.
+template <int D>
+struct BodyMoves {
+  std::int64_t first = 0;     // the bodies' first velocity entry
+  std::vector<Vec<D>> net;    // per entry (V, omega of each body): the summed changes
+  std::vector<double> moved;  // per body: the sum of the changes' norms
+
+  void reset(const ConeProblem<D>& p) {
+    first = p.first_body_entry;
+    const std::int64_t entries = static_cast<std::int64_t>(p.velocity.size()) - first;
+    net.assign(entries > 0 ? entries : 0, Vec<D>::Zero());
+    moved.assign(net.size() / 2, 0.0);
+  }
+  // Body v's change from `before` (its entries v, v + 1).
+  void add(const ConeProblem<D>& p, std::int64_t v, const Vec<D> (&before)[2]) {
+    double e = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      const Vec<D> d = p.velocity[v + k] - before[k];
+      net[v - first + k] += d;
+      for (int c = 0; c < D; ++c)
+        if (p.inv_mass[v + k][c] > 0.0) e += d[c] * d[c] / p.inv_mass[v + k][c];
+    }
+    moved[(v - first) / 2] += std::sqrt(e);
+  }
+  // The sum over bodies of (sum of the norms - norm of the sum)^2, zero
+  // where every row moved its body the same way; then starts over.
+  double traded(const ConeProblem<D>& p) {
+    double t = 0.0;
+    for (std::size_t b = 0; b < moved.size(); ++b) {
+      if (!(moved[b] > 0.0)) continue;
+      double e = 0.0;
+      for (int k = 0; k < 2; ++k) {
+        const std::int64_t v = first + 2 * static_cast<std::int64_t>(b) + k;
+        for (int c = 0; c < D; ++c)
+          if (p.inv_mass[v][c] > 0.0) e += net[2 * b + k][c] * net[2 * b + k][c] / p.inv_mass[v][c];
+        net[2 * b + k].setZero();
+      }
+      const double gap = moved[b] - std::sqrt(e);
+      t += gap * gap;
+      moved[b] = 0.0;
+    }
+    return t;
+  }
+};
+
 // One exact local update of contact row j (cone_problem.hpp): the Coulomb
 // problem y = W r + b, y = F^T u the node's velocity in the contact frame.
+// With `moves`, a row between a body and a solid (its node a ghost's, of
+// zero inverse mass) records there the changes it made to its bodies.
 template <int D>
-inline void update_contact_row(ConeProblem<D>& p, int j) {
+inline void update_contact_row(ConeProblem<D>& p, int j, BodyMoves<D>* moves = nullptr) {
   const int c = j - p.first_contact;
   const LocalDelassus<D>& W = p.contact_delassus[c];
   if (W.degenerate) {
@@ -95,8 +150,18 @@ inline void update_contact_row(ConeProblem<D>& p, int j) {
   const SymVec<D> dl = to_sym<D>(dL);
   const Vec<D> f = contact_force<D>(p, j, dl);
   move_contact_node<D>(p, j, f);
+  const bool measure = moves && body >= 0 && !(p.inv_mass[p.node[j]].maxCoeff() > 0.0);
+  Vec<D> was[2], other_was[2];
+  if (measure) {
+    was[0] = p.velocity[body], was[1] = p.velocity[body + 1];
+    if (other >= 0) other_was[0] = p.velocity[other], other_was[1] = p.velocity[other + 1];
+  }
   if (body >= 0) push_body<D>(p, body, p.contact_arm[c], f);
   if (other >= 0) push_body<D>(p, other, p.contact_other_arm[c], -f);
+  if (measure) {
+    moves->add(p, body, was);
+    if (other >= 0) moves->add(p, other, other_was);
+  }
   p.lambda[j] += dl;
 }
 
