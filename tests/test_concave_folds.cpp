@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "body_fixtures.hpp"
+#include "core/mesh.hpp"
+#include "core/polygon.hpp"
 #include "mesh_fixtures.hpp"
 #include "physics/edges.hpp"
 #include "physics/simulation.hpp"
@@ -55,6 +57,46 @@ TriangleMesh grooved_block() {
     m.triangles.push_back({k, 7 + n, 7 + k});
   }
   return m;
+}
+
+// The faces a point lies over (SolidMesh::faces_over, SolidPolygon::
+// faces_over): over the groove, 1 cm above its fold, both slopes (each at
+// 1 / sqrt(2) cm, normals (-+1, 1) / sqrt(2)); over the block's flat top
+// away from the groove, that one face; over a box none (a convex solid has
+// no concave fold, and outside it a point lies over one face at most, the
+// nearest, which the point's own row holds). Geometry, exact to round-off.
+TEST(ConcaveFolds, OnlyConcaveFoldsHaveFacesOver) {
+  const TriangleMesh block = grooved_block();
+  EXPECT_TRUE(has_concave_fold(block));
+  EXPECT_FALSE(has_concave_fold(test::box_mesh({0, 0, 0}, {1, 1, 1})));
+  TriangleMesh octahedron;  // welded: its triangles share their edges
+  octahedron.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  octahedron.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                          {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  EXPECT_FALSE(has_concave_fold(octahedron));
+  const SolidMesh mesh(block);
+  Point3 n[4];
+  double d[4];
+  const Point3 up{0, 0, 1};
+  ASSERT_EQ(mesh.faces_over({0.3, 0.15, 0.05}, up, 0.02, 1e-4, n, d, 4), 2);
+  for (int f = 0; f < 2; ++f) {
+    EXPECT_NEAR(d[f], 0.01 / std::sqrt(2.0), 1e-15);
+    EXPECT_NEAR(std::abs(n[f][0]), std::sqrt(0.5), 1e-15);
+    EXPECT_NEAR(n[f][2], std::sqrt(0.5), 1e-15);
+  }
+  EXPECT_LT(n[0][0] * n[1][0], 0.0);
+  EXPECT_EQ(mesh.faces_over({0.2, 0.15, 0.105}, up, 0.02, 1e-4, n, d, 4), 1);
+  const SolidMesh box(test::box_mesh({0, 0, 0}, {1, 1, 1}));
+  EXPECT_EQ(box.faces_over({0.5, 0.5, 1.01}, up, 0.02, 1e-4, n, d, 4), 0);
+  std::vector<SolidPolygon::Point2> corners;
+  for (const auto& p : kSection) corners.push_back({p[0], p[1]});
+  const SolidPolygon polygon(corners);
+  double nx[4], ny[4];
+  ASSERT_EQ(polygon.faces_over(0.3, 0.05, 0.0, 1.0, 0.02, 1e-4, nx, ny, d, 4), 2);
+  EXPECT_NEAR(d[0], 0.01 / std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(d[1], 0.01 / std::sqrt(2.0), 1e-15);
+  const SolidPolygon square({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  EXPECT_EQ(square.faces_over(0.5, 1.01, 0.0, 1.0, 0.02, 1e-4, nx, ny, d, 4), 0);
 }
 
 // How deep a point (x, height) is in the block near its groove (|x - 0.3|

@@ -181,7 +181,14 @@ std::vector<Point3> vertex_normals(const TriangleMesh& mesh) {
   return out;
 }
 
-std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
+namespace {
+
+// f(a, b, n0, n1, convex) for each edge (a, b) that two triangles of outward
+// normals n0 and n1 share, where they are not coplanar (normals more than
+// about a milliradian apart); convex where the far corner of one triangle
+// lies below the other's plane.
+template <class F>
+void for_each_fold(const TriangleMesh& mesh, const F& f) {
   const auto& v = mesh.vertices;
   const std::vector<Point3> normal = outward_normals(mesh);
   // (edge key, triangle, corner opposite the edge), sorted by key.
@@ -191,19 +198,18 @@ std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
   };
   std::vector<Side> sides;
   sides.reserve(mesh.triangles.size() * 3);
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) {
-      const auto& t = mesh.triangles[f];
-      const auto i = static_cast<std::uint32_t>(t[k]),
-                 j = static_cast<std::uint32_t>(t[(k + 1) % 3]);
+      const auto& tr = mesh.triangles[t];
+      const auto i = static_cast<std::uint32_t>(tr[k]),
+                 j = static_cast<std::uint32_t>(tr[(k + 1) % 3]);
       sides.push_back({std::uint64_t(std::min(i, j)) << 32 | std::max(i, j),
-                       static_cast<std::int32_t>(f), t[(k + 2) % 3]});
+                       static_cast<std::int32_t>(t), tr[(k + 2) % 3]});
     }
   std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
     return x.key != y.key ? x.key < y.key : x.tri < y.tri;
   });
   constexpr double kFlat = 5e-7;  // 1 - cos of 1 mrad: coplanar triangles
-  std::vector<FeatureEdge> out;
   for (std::size_t k = 0; k < sides.size();) {
     std::size_t run = k;
     while (run < sides.size() && sides[run].key == sides[k].key) ++run;
@@ -212,21 +218,37 @@ std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
       const Point3 &n0 = normal[s0.tri], &n1 = normal[s1.tri];
       const auto a = static_cast<std::int32_t>(s0.key >> 32),
                  b = static_cast<std::int32_t>(s0.key & 0xffffffffu);
-      // Convex: the far corner of one triangle lies below the other's plane.
-      const bool convex = dot(sub(v[s1.opposite], v[a]), n0) < 0.0;
-      const Point3 sum{n0[0] + n1[0], n0[1] + n1[1], n0[2] + n1[2]};
-      const double len = norm(sum);
-      if (convex && dot(n0, n1) < 1.0 - kFlat && len > 0.0) {
-        const Point3 bisector{sum[0] / len, sum[1] / len, sum[2] / len};
-        out.push_back({v[a], v[b], bisector, dot(n0, bisector)});
-      }
+      if (dot(n0, n1) < 1.0 - kFlat) f(a, b, n0, n1, dot(sub(v[s1.opposite], v[a]), n0) < 0.0);
     }
     k = run;
   }
+}
+
+}  // namespace
+
+std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh) {
+  std::vector<FeatureEdge> out;
+  for_each_fold(mesh, [&](std::int32_t a, std::int32_t b, const Point3& n0, const Point3& n1,
+                          bool convex) {
+    const Point3 sum{n0[0] + n1[0], n0[1] + n1[1], n0[2] + n1[2]};
+    const double len = norm(sum);
+    if (convex && len > 0.0) {
+      const Point3 bisector{sum[0] / len, sum[1] / len, sum[2] / len};
+      out.push_back({mesh.vertices[a], mesh.vertices[b], bisector, dot(n0, bisector)});
+    }
+  });
   return out;
 }
 
-SolidMesh::SolidMesh(const TriangleMesh& mesh) {
+bool has_concave_fold(const TriangleMesh& mesh) {
+  bool concave = false;
+  for_each_fold(mesh, [&](std::int32_t, std::int32_t, const Point3&, const Point3&, bool convex) {
+    concave = concave || !convex;
+  });
+  return concave;
+}
+
+SolidMesh::SolidMesh(const TriangleMesh& mesh) : concave_(has_concave_fold(mesh)) {
   tri_.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles)
     tri_.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
@@ -484,6 +506,8 @@ bool SolidMesh::face_towards(const Point3& p, const Point3& towards, double slac
 
 int SolidMesh::faces_over(const Point3& p, const Point3& towards, double reach, double slack,
                           Point3* normals, double* distances, int max) const {
+  // Outside a convex solid a point lies over one face at most, the nearest.
+  if (!concave_) return 0;
   int count = 0;
   const double inside2 = 1e-18 * reach * reach;
   within(p, reach, [&](std::int32_t k, const Point3& q, double) {

@@ -65,6 +65,11 @@ struct FeatureEdge {
 // it is oriented. Edges not shared by exactly two triangles are skipped.
 std::vector<FeatureEdge> feature_edges(const TriangleMesh& mesh);
 
+// Whether two triangles of the mesh meet at a concave fold (the far corner
+// of one above the other's plane, their normals more than about a
+// milliradian apart).
+bool has_concave_fold(const TriangleMesh& mesh);
+
 // Each vertex's outward unit normal: the mean of its triangles' outward
 // normals weighted by their angles there (Thurmer & Wuthrich 1998), outward
 // by the signed volume as for feature_edges; zero where they cancel.
@@ -162,6 +167,7 @@ class SolidMesh {
   void within(const Point3& p, double reach, const F& f) const;
   void summarise(Node& n) const;
 
+  bool concave_ = false;  // has_concave_fold: faces_over has something to find
   std::vector<Tri> tri_;
   std::vector<Node> nodes_;
   Point3 lo_{}, hi_{};

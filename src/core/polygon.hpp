@@ -52,6 +52,13 @@ class SolidPolygon {
       edges_.push_back({a[0], a[1], b[1], ex, ey, ex * ex + ey * ey});
     }
     outward_ = orientation() > 0.0 ? 1.0 : -1.0;
+    // A concave corner turns against the orientation (the two edges' cross
+    // product of the other sign, beyond a part in 1e9 of their lengths).
+    for (std::size_t i = 0, n = edges_.size(); i < n; ++i) {
+      const Edge &e = edges_[i], &f = edges_[(i + 1) % n];
+      const double turn = outward_ * (e.ex * f.ey - e.ey * f.ex);
+      concave_ = concave_ || turn < -1e-9 * std::sqrt(e.len2 * f.len2);
+    }
   }
 
   // Winding number around (x, y): nonzero inside.
@@ -166,6 +173,8 @@ class SolidPolygon {
   // edge's line and only one counts. Returns their count.
   int faces_over(double x, double y, double tx, double ty, double reach, double slack, double* nx,
                  double* ny, double* d, int max) const {
+    // Outside a convex polygon a point lies over one edge at most, the nearest.
+    if (!concave_) return 0;
     int count = 0;
     for (std::size_t i = 0; i < edges_.size(); ++i) {
       const Edge& e = edges_[i];
@@ -214,6 +223,7 @@ class SolidPolygon {
   std::vector<Point2> v_;
   std::vector<Edge> edges_;
   Point2 lo_{}, hi_{};
+  bool concave_ = false;  // some corner is concave: faces_over has something to find
   double outward_ = 1.0;  // +1 for counter-clockwise corners: an edge's right-hand normal is out
 };
 
