@@ -85,6 +85,22 @@ inline bool corner_inward(const Obstacle<D>& o, int c, Vec<D>* inward) {
 // it were on the face (a support wider by at most this).
 inline constexpr double kCornerSlack = 0.005;
 
+// A point and a direction in the frame signed_distance reads polygon or
+// mesh o in (a turned solid's own, about its reference point b; else the
+// scene's, less a), and a direction found there back in the world's.
+template <int D>
+inline Vec<D> solid_frame_point(const Obstacle<D>& o, const Vec<D>& x) {
+  return o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
+}
+template <int D>
+inline Vec<D> solid_frame_direction(const Obstacle<D>& o, const Vec<D>& v) {
+  return o.posed ? Vec<D>(o.rotation.transpose() * v) : v;
+}
+template <int D>
+inline Vec<D> world_direction(const Obstacle<D>& o, const Vec<D>& v) {
+  return o.posed ? Vec<D>(o.rotation * v) : v;
+}
+
 // signed_distance for a corner of a box, polygon or mesh, `towards` its
 // inward direction (corner_inward), against solid o: where o is a box, a
 // polygon or a mesh, the face chosen by box_face_towards, SolidPolygon::
@@ -97,13 +113,9 @@ inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D
                               double h, Vec<D>* normal) {
   const double slack = kCornerSlack * h;
   if (o.gone) return signed_distance(o, x, normal);
-  // x and `towards` in the frame signed_distance reads the solid in (a
-  // turned solid's own; a polygon's or mesh's as the scene gave it), and
+  // x and `towards` in the frame signed_distance reads the solid in, and
   // the normal found there back in the world's.
-  const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
-  const auto solid_point = [&]() -> Vec<D> {
-    return o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
-  };
+  const Vec<D> t = solid_frame_direction(o, towards);
   Vec<D> n;
   double d;
   bool found = false;
@@ -117,7 +129,7 @@ inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D
     // the mesh's corners over about a sample, and a corner landing on one
     // would find it nearer than its gap said (DistanceGrid).
     if (o.shape == ObstacleShape::Mesh && o.distance) {
-      const Vec<D> p = solid_point();
+      const Vec<D> p = solid_frame_point(o, x);
       Point3 m{};
       found =
           o.distance->mesh().face_towards({p[0], p[1], p[2]}, {t[0], t[1], t[2]}, slack, h, &d, &m);
@@ -125,12 +137,12 @@ inline double corner_distance(const Obstacle<D>& o, const Vec<D>& x, const Vec<D
     }
   } else {
     if (o.shape == ObstacleShape::Polygon) {
-      const Vec<D> p = solid_point();
+      const Vec<D> p = solid_frame_point(o, x);
       found = o.polygon->face_towards(p[0], p[1], t[0], t[1], slack, &d, &n[0], &n[1]);
     }
   }
   if (found) {
-    *normal = o.posed ? Vec<D>(o.rotation * n) : n;
+    *normal = world_direction(o, n);
     return d;
   }
   return signed_distance(o, x, normal);
@@ -155,8 +167,7 @@ template <int D>
 inline int faces_over(const Obstacle<D>& o, const Vec<D>& x, const Vec<D>& towards, double reach,
                       double h, Vec<D>* normals, double* distances, int max) {
   if (o.gone) return 0;
-  const Vec<D> p = o.posed ? Vec<D>(o.b + o.rotation.transpose() * (x - o.a)) : Vec<D>(x - o.a);
-  const Vec<D> t = o.posed ? Vec<D>(o.rotation.transpose() * towards) : towards;
+  const Vec<D> p = solid_frame_point(o, x), t = solid_frame_direction(o, towards);
   constexpr int kMax = 8;
   max = std::min(max, kMax);
   int count = 0;
@@ -173,8 +184,7 @@ inline int faces_over(const Obstacle<D>& o, const Vec<D>& x, const Vec<D>& towar
                                           kCornerSlack * h, m, distances, max);
     for (int f = 0; f < count; ++f) normals[f] = Vec<D>(m[f][0], m[f][1], m[f][2]);
   }
-  if (o.posed)
-    for (int f = 0; f < count; ++f) normals[f] = o.rotation * normals[f];
+  for (int f = 0; f < count; ++f) normals[f] = world_direction(o, normals[f]);
   return count;
 }
 

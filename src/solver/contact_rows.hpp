@@ -89,14 +89,10 @@ struct BodyMoves {
   }
   // Body v's change from `before` (its entries v, v + 1).
   void add(const ConeProblem<D>& p, std::int64_t v, const Vec<D> (&before)[2]) {
-    double e = 0.0;
-    for (int k = 0; k < 2; ++k) {
-      const Vec<D> d = p.velocity[v + k] - before[k];
-      net[v - first + k] += d;
-      for (int c = 0; c < D; ++c)
-        if (p.inv_mass[v + k][c] > 0.0) e += d[c] * d[c] / p.inv_mass[v + k][c];
-    }
-    moved[(v - first) / 2] += std::sqrt(e);
+    const Vec<D> d[2] = {p.velocity[v] - before[0], p.velocity[v + 1] - before[1]};
+    net[v - first] += d[0];
+    net[v - first + 1] += d[1];
+    moved[(v - first) / 2] += norm(p, v, d);
   }
   // The sum over bodies of (sum of the norms - norm of the sum)^2, zero
   // where every row moved its body the same way; then starts over.
@@ -104,18 +100,24 @@ struct BodyMoves {
     double t = 0.0;
     for (std::size_t b = 0; b < moved.size(); ++b) {
       if (!(moved[b] > 0.0)) continue;
-      double e = 0.0;
-      for (int k = 0; k < 2; ++k) {
-        const std::int64_t v = first + 2 * static_cast<std::int64_t>(b) + k;
-        for (int c = 0; c < D; ++c)
-          if (p.inv_mass[v][c] > 0.0) e += net[2 * b + k][c] * net[2 * b + k][c] / p.inv_mass[v][c];
-        net[2 * b + k].setZero();
-      }
-      const double gap = moved[b] - std::sqrt(e);
+      Vec<D>* const sum = &net[2 * b];
+      const double gap = moved[b] - norm(p, first + 2 * static_cast<std::int64_t>(b), sum);
       t += gap * gap;
+      sum[0].setZero();
+      sum[1].setZero();
       moved[b] = 0.0;
     }
     return t;
+  }
+
+ private:
+  // The kinetic-energy norm of a change d of body v's two entries.
+  static double norm(const ConeProblem<D>& p, std::int64_t v, const Vec<D>* d) {
+    double e = 0.0;
+    for (int k = 0; k < 2; ++k)
+      for (int c = 0; c < D; ++c)
+        if (p.inv_mass[v + k][c] > 0.0) e += d[k][c] * d[k][c] / p.inv_mass[v + k][c];
+    return std::sqrt(e);
   }
 };
 
